@@ -1,0 +1,43 @@
+# The two commands of the README's quick start: `make demo` and `make test`.
+# Both create .venv, install the package (and, when run as root, the Debian
+# packages it needs), then run their job.
+PYTHON ?= python3
+VENV   := .venv
+BIN    := $(VENV)/bin
+STAMP  := $(VENV)/.installed
+DEBS   := libosmesa6 libegl1 libegl-mesa0 libgl1-mesa-dri espeak-ng
+
+.PHONY: demo test test-all bench setup debs clean
+
+setup: $(STAMP)
+
+$(STAMP): pyproject.toml
+	@$(MAKE) --no-print-directory debs
+	$(PYTHON) -m venv $(VENV)
+	$(BIN)/pip install --quiet --upgrade pip
+	$(BIN)/pip install --quiet -e '.[test]'
+	@touch $(STAMP)
+
+# Installs missing Debian packages when run as root; otherwise says what is missing.
+debs:
+	@missing=""; for p in $(DEBS); do dpkg -s $$p >/dev/null 2>&1 || missing="$$missing $$p"; done; \
+	if [ -n "$$missing" ]; then \
+	  if [ "$$(id -u)" = "0" ]; then apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq $$missing; \
+	  else echo "note: missing Debian packages:$$missing (install them as root for rendering and speech)"; fi; \
+	fi
+
+demo: $(STAMP)
+	$(BIN)/assistbot fields-demo
+
+test: $(STAMP)
+	$(BIN)/python -m pytest -m "not slow" -q
+
+test-all: $(STAMP)
+	$(BIN)/python -m pytest -q
+
+bench: $(STAMP)
+	@for b in benchmarks/*.py; do echo "== $$b"; $(BIN)/python $$b || exit 1; done
+
+clean:
+	rm -rf $(VENV) render/* build *.egg-info src/*.egg-info
+	touch render/.gitkeep

@@ -1,0 +1,1 @@
+"""Command modules of the `assistbot` CLI (see `assistbot.cli`)."""

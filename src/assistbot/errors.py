@@ -1,0 +1,22 @@
+"""The one error type for mistakes a user can make.
+
+Every such mistake (a bad scenario file, an unknown parameter, a missing GL
+backend) ends in a single line ``error: <where>: <key>: <message>`` and exit
+status 2; `assistbot.cli` prints it. Library code raises `UserError` and never
+prints or exits itself.
+"""
+
+from __future__ import annotations
+
+
+class UserError(Exception):
+    """A mistake the user can fix: names where it is, which key, and what is allowed."""
+
+    def __init__(self, where: str, key: str, message: str) -> None:
+        self.where = str(where)
+        self.key = str(key)
+        self.message = str(message)
+        super().__init__(self.line())
+
+    def line(self) -> str:
+        return f"error: {self.where}: {self.key}: {self.message}"
