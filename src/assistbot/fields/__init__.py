@@ -1,0 +1,35 @@
+"""assistbot.fields: Amari dynamic neural fields (Dynamic Field Theory), numpy/scipy only.
+
+Equations (the seed's section III.A):
+
+- (1) tau du/dt = -u + S(x, t) + integral w(x - x') f(u(x', t)) dx' + h, h < 0
+- (2) w(d) = A exp(-d^2 / 2 sigma^2) - w_inhib
+- (3) f(u) = 1 / (1 + exp(-beta (u - u0)))
+- (4) S(x, t) = k sum_m sum_j a_mj c_j(t) exp(-(x - x_m)^2 / 2 sigma^2),
+  c_j the presence of a self-stabilised peak at item j of the source.
+
+A `Network` is declared as data (`Network.from_dict` / `from_yaml`), stepped
+as one batch (numba when available, numpy otherwise), addressed by field,
+item and parameter path, and recorded for paper-style plots. `Field2D` is a
+field over a plane (the robot's target field). Nothing here knows robots.
+"""
+
+from assistbot.fields.errors import FieldError
+from assistbot.fields.field2d import Field2D
+from assistbot.fields.network import Network, format_table
+from assistbot.fields.plot import plot_history
+from assistbot.fields.record import Recorder
+from assistbot.fields.spec import CouplingSpec, FieldSpec, KernelSpec, NetworkSpec
+
+__all__ = [
+    "CouplingSpec",
+    "Field2D",
+    "FieldError",
+    "FieldSpec",
+    "KernelSpec",
+    "Network",
+    "NetworkSpec",
+    "Recorder",
+    "format_table",
+    "plot_history",
+]

@@ -1,0 +1,314 @@
+"""A network of coupled 1-D fields, stepped as one batch, addressable by field, item and parameter path."""
+
+from __future__ import annotations
+
+import copy
+from pathlib import Path
+from typing import Any, Iterable, Mapping
+
+import numpy as np
+
+from assistbot.fields.compiled import Compiled, compile_spec, gaussian_half_width
+from assistbot.fields.errors import FieldError
+from assistbot.fields.record import Recorder
+from assistbot.fields.spec import FieldSpec, KernelSpec, NetworkSpec
+from assistbot.fields.stepping import make_stepper
+
+BACKENDS = ("auto", "numpy", "numba")
+
+
+class Network:
+    """Fields and couplings of a `NetworkSpec`, with their state u and inputs.
+
+    Stimuli at items (``set_stimulus``) and at arbitrary positions
+    (``set_stimulus_at``) are held until changed, as vision input is. Time
+    advances in steps of ``spec.dt`` seconds.
+    """
+
+    def __init__(self, spec: NetworkSpec, backend: str = "auto", seed: int | None = 0) -> None:
+        if backend not in BACKENDS:
+            raise FieldError("network", "backend", f"unknown backend {backend!r}; allowed: {', '.join(BACKENDS)}")
+        spec.validate()
+        self.spec = spec
+        self.backend_request = backend
+        self.rng = np.random.default_rng(seed)
+        self._recorders: list[Recorder] = []
+        self._point_stimuli: dict[tuple[str, str], tuple[float, float, float]] = {}
+        self._compile(fresh=True)
+
+    # -- construction -------------------------------------------------------------------
+    @classmethod
+    def from_dict(cls, d: Mapping[str, Any], backend: str = "auto", seed: int | None = 0) -> "Network":
+        return cls(NetworkSpec.from_dict(d), backend=backend, seed=seed)
+
+    @classmethod
+    def from_yaml(cls, path: str | Path, backend: str = "auto", seed: int | None = 0) -> "Network":
+        import yaml
+
+        path = Path(path)
+        try:
+            data = yaml.safe_load(path.read_text())
+        except OSError as exc:
+            raise FieldError(str(path), "-", f"cannot read the file: {exc.strerror}") from None
+        except yaml.YAMLError as exc:
+            raise FieldError(str(path), "-", f"not valid YAML: {exc}") from None
+        try:
+            return cls.from_dict(data or {}, backend=backend, seed=seed)
+        except FieldError as exc:
+            raise FieldError(f"{path}: {exc.where}", exc.key, exc.message) from None
+
+    def _compile(self, fresh: bool) -> None:
+        old = None if fresh else (self._c, self.state_u)
+        self._c: Compiled = compile_spec(self.spec)
+        self._stepper = make_stepper(self._c, self.backend_request)
+        c = self._c
+        self.state_u = c.h.copy()
+        self._S = np.zeros(c.size)
+        self._S_ext = np.zeros(c.size)
+        self._stim_item = np.zeros(c.n_items)
+        if fresh:
+            self.t = 0.0
+            self.steps = 0
+        else:
+            old_c, old_u = old
+            for name in c.names:
+                if name in old_c.names:
+                    self.state_u[c.slice(name)] = old_u[old_c.slice(name)]
+            for key, amp in getattr(self, "_item_stimuli", {}).items():
+                self._stim_item[self._item(*key)] = amp
+        if fresh:
+            self._item_stimuli: dict[tuple[str, str], float] = {}
+        self._render_point_stimuli()
+
+    @property
+    def backend(self) -> str:
+        """The stepping path in use: "numpy" or "numba"."""
+        return self._stepper.name
+
+    @property
+    def dt(self) -> float:
+        return self.spec.dt
+
+    @property
+    def field_names(self) -> list[str]:
+        return list(self._c.names)
+
+    def field(self, name: str) -> FieldSpec:
+        return self.spec.field(name)
+
+    # -- inputs -------------------------------------------------------------------------
+    def _item(self, field: str, item: str) -> int:
+        f = self.spec.field(field)
+        if item not in f.items:
+            raise FieldError(f.where, str(item), f"unknown item; known: {', '.join(f.items) or '(none)'}")
+        return self._c.item_off[field] + f.items.index(item)
+
+    def set_stimulus(self, field: str, item: str, amplitude: float) -> None:
+        """Gaussian input of eq. (4) at the item's centre, width input_sigma, held until changed."""
+        idx = self._item(field, item)
+        self._stim_item[idx] = float(amplitude)
+        self._item_stimuli[(field, item)] = float(amplitude)
+
+    def clear_stimulus(self, field: str, item: str) -> None:
+        self.set_stimulus(field, item, 0.0)
+        del self._item_stimuli[(field, item)]
+
+    def clear_stimuli(self, field: str | None = None) -> None:
+        for key in [k for k in self._item_stimuli if field is None or k[0] == field]:
+            self.clear_stimulus(*key)
+        for key in [k for k in self._point_stimuli if field is None or k[0] == field]:
+            del self._point_stimuli[key]
+        self._render_point_stimuli()
+
+    def set_stimulus_at(self, field: str, name: str, position: float, amplitude: float, sigma: float | None = None) -> None:
+        """A named Gaussian input at any position (field units), held until changed or cleared."""
+        f = self.spec.field(field)
+        sigma = f.input_sigma if sigma is None else float(sigma)
+        if sigma <= 0:
+            raise FieldError(f.where, "sigma", f"stimulus width must be > 0, got {sigma}")
+        self._point_stimuli[(field, name)] = (float(position), float(amplitude), sigma)
+        self._render_point_stimuli()
+
+    def clear_stimulus_at(self, field: str, name: str) -> None:
+        self._point_stimuli.pop((field, name), None)
+        self._render_point_stimuli()
+
+    def _render_point_stimuli(self) -> None:
+        self._S_ext[:] = 0.0
+        for (field, _), (pos, amp, sigma) in self._point_stimuli.items():
+            f = self.spec.fields[field]
+            x = f.positions
+            d = x - pos
+            if f.periodic:
+                L = f.size * f.dx
+                d = (d + L / 2) % L - L / 2
+            self._S_ext[self._c.slice(field)] += amp * np.exp(-(d**2) / (2 * sigma**2))
+
+    # -- dynamics -----------------------------------------------------------------------
+    def step(self, n: int = 1) -> None:
+        """Advance ``n`` Euler steps; runs of steps between recordings go to the stepper in one call."""
+        c = self._c
+        remaining = int(n)
+        while remaining > 0:
+            chunk = remaining
+            for r in self._recorders:
+                chunk = min(chunk, r.every - self.steps % r.every)
+            xi = self.rng.standard_normal((chunk, c.size)) if c.has_noise else None
+            self._stepper.run(chunk, self.state_u, self._S, self._S_ext, self._stim_item, xi)
+            remaining -= chunk
+            self.steps += chunk
+            self.t = self.steps * self.spec.dt
+            for r in self._recorders:
+                r.maybe_record()
+
+    def run(self, seconds: float) -> None:
+        self.step(int(round(seconds / self.spec.dt)))
+
+    def reset(self) -> None:
+        """Back to the resting level h everywhere, time 0, stimuli kept."""
+        self.state_u[:] = self._c.h
+        self._S[:] = 0.0
+        self.t = 0.0
+        self.steps = 0
+
+    def reset_field(self, field: str) -> None:
+        """Put one field back to rest, e.g. to release a decision once it was carried out."""
+        self.state_u[self._c.slice(self.spec.field(field).name)] = self.spec.fields[field].h
+
+    # -- read-out -----------------------------------------------------------------------
+    def u(self, field: str) -> np.ndarray:
+        """Activity of a field (a view: copy it to keep it)."""
+        self.spec.field(field)
+        return self.state_u[self._c.slice(field)]
+
+    def input(self, field: str) -> np.ndarray:
+        """Total input S(x) (stimuli + couplings) of the last step."""
+        self.spec.field(field)
+        return self._S[self._c.slice(field)]
+
+    def output(self, field: str) -> np.ndarray:
+        f = self.spec.field(field)
+        return 1.0 / (1.0 + np.exp(-np.clip(f.beta * (self.u(field) - f.u0), -500, 500)))
+
+    def activity(self, field: str, item: str) -> float:
+        f = self.spec.field(field)
+        return float(self.u(field)[f.item_index(item)])
+
+    def activities(self, field: str) -> dict[str, float]:
+        f = self.spec.field(field)
+        vals = self.u(field)[f.item_indices]
+        return dict(zip(f.items, vals.tolist()))
+
+    def presence(self, field: str) -> np.ndarray:
+        """c_j of eq. (4): the sigmoid of the activity at each item's centre."""
+        f = self.spec.field(field)
+        return self.output(field)[f.item_indices]
+
+    def peaks(self, field: str, threshold: float = 0.0) -> list[str]:
+        """Items whose centre activity is above ``threshold``, strongest first."""
+        acts = self.activities(field)
+        return [k for k, v in sorted(acts.items(), key=lambda kv: -kv[1]) if v > threshold]
+
+    def peak_positions(self, field: str, threshold: float = 0.0) -> list[float]:
+        """Positions (field units) of local maxima above ``threshold``, for fields without items."""
+        f = self.spec.field(field)
+        u = self.u(field)
+        left = np.concatenate([[-np.inf], u[:-1]])
+        right = np.concatenate([u[1:], [-np.inf]])
+        idx = np.nonzero((u > threshold) & (u >= left) & (u > right))[0]
+        return (idx * f.dx).tolist()
+
+    # -- recording ----------------------------------------------------------------------
+    def record(self, fields: Iterable[str] | None = None, every: int = 1) -> Recorder:
+        names = list(fields) if fields is not None else self.field_names
+        for n in names:
+            self.spec.field(n)
+        rec = Recorder(self, names, every)
+        self._recorders.append(rec)
+        rec.maybe_record(force=True)
+        return rec
+
+    def stop_recording(self, rec: Recorder) -> None:
+        self._recorders.remove(rec)
+
+    # -- parameters by path -------------------------------------------------------------
+    def parameter_paths(self) -> list[str]:
+        paths = ["dt"]
+        for f in self.spec.fields.values():
+            for key in ("tau", "h", "beta", "u0", "input_sigma", "noise", "dx", "periodic"):
+                paths.append(f"fields.{f.name}.{key}")
+            for key in ("A", "sigma", "w_inhib"):
+                paths.append(f"fields.{f.name}.kernel.{key}")
+        for c in self.spec.couplings:
+            paths.append(f"couplings.{c.name}.k")
+            for t, row in c.table.items():
+                for s in row:
+                    paths.append(f"couplings.{c.name}.table.{t}.{s}")
+        return paths
+
+    def _resolve(self, path: str) -> tuple[Any, str]:
+        parts = path.split(".")
+        if parts == ["dt"]:
+            return self.spec, "dt"
+        if len(parts) >= 3 and parts[0] == "fields":
+            f = self.spec.field(parts[1])
+            if len(parts) == 3 and parts[2] in ("tau", "h", "beta", "u0", "input_sigma", "noise", "dx", "periodic"):
+                return f, parts[2]
+            if len(parts) == 4 and parts[2] == "kernel" and parts[3] in ("A", "sigma", "w_inhib"):
+                return f.kernel, parts[3]
+        if len(parts) >= 3 and parts[0] == "couplings":
+            # coupling names may contain dots only if the user chose so; match the longest known name
+            for c in self.spec.couplings:
+                cn = c.name.split(".")
+                if parts[1 : 1 + len(cn)] == cn:
+                    rest = parts[1 + len(cn) :]
+                    if rest == ["k"]:
+                        return c, "k"
+                    if len(rest) == 3 and rest[0] == "table":
+                        row = c.table.setdefault(rest[1], {})
+                        return row, rest[2]
+        raise FieldError("network", path, "unknown parameter path; see Network.parameter_paths()")
+
+    def get(self, path: str) -> Any:
+        obj, key = self._resolve(path)
+        return obj[key] if isinstance(obj, dict) else getattr(obj, key)
+
+    def set(self, path: str, value: Any) -> None:
+        """Change a parameter while the network runs; activity of every field is kept."""
+        before = copy.deepcopy(self.spec)
+        obj, key = self._resolve(path)
+        if isinstance(obj, dict):
+            obj[key] = value
+        else:
+            setattr(obj, key, value)
+        try:
+            self.spec.validate()
+        except FieldError:
+            self.spec = before
+            raise
+        self._compile(fresh=False)
+
+    def describe_table(self, coupling: str) -> str:
+        """The connection table a_mj of a coupling as readable text."""
+        c = self.spec.coupling(coupling)
+        return format_table(c.matrix(self.spec.fields), self.spec.fields[c.target].items, self.spec.fields[c.source].items, f"{c.name} (k={c.k:g})")
+
+    def __repr__(self) -> str:
+        sizes = ", ".join(f"{n}[{self.spec.fields[n].size}]" for n in self._c.names)
+        return f"Network({sizes}; {len(self.spec.couplings)} couplings; dt={self.spec.dt}; backend={self.backend})"
+
+
+def format_table(a: np.ndarray, rows: list[str], cols: list[str], title: str = "") -> str:
+    """Rows = target items, columns = source items; zeros shown as '.'."""
+    width = max([len(c) for c in cols] + [5])
+    rw = max([len(r) for r in rows] + [6])
+    lines = [title] if title else []
+    lines.append(" " * rw + " | " + " ".join(c.rjust(width) for c in cols))
+    lines.append("-" * (rw + 3 + (width + 1) * len(cols)))
+    for i, r in enumerate(rows):
+        cells = [(f"{a[i, j]:g}" if a[i, j] != 0 else ".").rjust(width) for j in range(len(cols))]
+        lines.append(r.rjust(rw) + " | " + " ".join(cells))
+    return "\n".join(lines)
+
+
+__all__ = ["Network", "NetworkSpec", "FieldSpec", "KernelSpec", "format_table", "gaussian_half_width"]

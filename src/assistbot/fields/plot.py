@@ -1,0 +1,55 @@
+"""Paper-style plots of recorded fields: input on top, activity below, over time."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+
+from assistbot.fields.record import Recorder
+
+
+def _pyplot():
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    return plt
+
+
+def plot_history(rec: Recorder, field: str, path: str | Path, title: str | None = None, threshold: float = 0.0) -> Path:
+    """Two panels for one field: total input S (top) and activity u (bottom) over time.
+
+    Fields with named items show one labelled line per item (the activity at
+    its centre); fields without items show an image of u(x, t).
+    """
+    plt = _pyplot()
+    spec = rec.net.spec.fields[field]
+    t = rec.times
+    fig, (ax_s, ax_u) = plt.subplots(2, 1, figsize=(8, 5.5), sharex=True)
+    if spec.items:
+        s_tr, u_tr = rec.item_traces(field, "s"), rec.item_traces(field, "u")
+        cmap = plt.get_cmap("tab20" if len(spec.items) > 10 else "tab10")
+        for i, item in enumerate(spec.items):
+            color = cmap(i % cmap.N)
+            ax_s.plot(t, s_tr[item], color=color, lw=1.4)
+            ax_u.plot(t, u_tr[item], color=color, lw=1.4, label=item)
+        ax_u.axhline(threshold, color="k", lw=0.6, ls="--")
+        ax_u.legend(loc="center left", bbox_to_anchor=(1.01, 0.5), fontsize=7, frameon=False)
+        ax_s.set_ylabel("input S")
+        ax_u.set_ylabel("activity u")
+    else:
+        extent = (t[0], t[-1] if t[-1] > t[0] else t[0] + 1e-9, 0, spec.size * spec.dx)
+        for ax, data, lab in ((ax_s, rec.s[field], "input S"), (ax_u, rec.u[field], "activity u")):
+            im = ax.imshow(np.asarray(data).T, aspect="auto", origin="lower", extent=extent, cmap="viridis")
+            fig.colorbar(im, ax=ax, label=lab)
+            ax.set_ylabel("x")
+    ax_u.set_xlabel("time (s)")
+    ax_s.set_title(title or field)
+    fig.tight_layout()
+    path = Path(path)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+    return path

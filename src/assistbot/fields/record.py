@@ -1,0 +1,54 @@
+"""Recording of activity u and total input S over time for chosen fields."""
+
+from __future__ import annotations
+
+from typing import TYPE_CHECKING
+
+import numpy as np
+
+if TYPE_CHECKING:
+    from assistbot.fields.network import Network
+
+
+class Recorder:
+    """Keeps u and S of some fields every ``every`` steps; arrays are built on access."""
+
+    def __init__(self, net: "Network", fields: list[str], every: int = 1) -> None:
+        if int(every) < 1:
+            from assistbot.fields.errors import FieldError
+
+            raise FieldError("recorder", "every", f"must be a whole number >= 1, got {every!r}")
+        self.net = net
+        self.fields = list(fields)
+        self.every = int(every)
+        self._t: list[float] = []
+        self._u: dict[str, list[np.ndarray]] = {f: [] for f in self.fields}
+        self._s: dict[str, list[np.ndarray]] = {f: [] for f in self.fields}
+
+    def maybe_record(self, force: bool = False) -> None:
+        if not force and self.net.steps % self.every:
+            return
+        self._t.append(self.net.t)
+        for f in self.fields:
+            self._u[f].append(self.net.u(f).copy())
+            self._s[f].append(self.net.input(f).copy())
+
+    @property
+    def times(self) -> np.ndarray:
+        return np.asarray(self._t)
+
+    @property
+    def u(self) -> dict[str, np.ndarray]:
+        """Activity per field, shape (samples, positions)."""
+        return {f: np.asarray(v) for f, v in self._u.items()}
+
+    @property
+    def s(self) -> dict[str, np.ndarray]:
+        """Total input per field, shape (samples, positions)."""
+        return {f: np.asarray(v) for f, v in self._s.items()}
+
+    def item_traces(self, field: str, which: str = "u") -> dict[str, np.ndarray]:
+        """Time course at each item's centre: {item: (samples,)}."""
+        spec = self.net.spec.fields[field]
+        data = (self.u if which == "u" else self.s)[field]
+        return {item: data[:, idx] for item, idx in zip(spec.items, spec.item_indices)}

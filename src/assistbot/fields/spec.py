@@ -1,0 +1,271 @@
+"""Networks of dynamic neural fields as plain data, validated on construction.
+
+A network spec is what a user writes (a dict or a YAML file): fields with
+their parameters, and couplings between named items of fields. Every bad
+value raises `FieldError` naming the element and the parameter.
+
+Units: a field has ``size`` positions spaced ``dx`` field units apart; kernel
+and input widths (``sigma``, ``input_sigma``) are in field units; ``tau`` and
+``dt`` are in seconds of simulated time.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field, fields as dc_fields
+from typing import Any, Mapping
+
+import numpy as np
+
+from assistbot.fields.errors import FieldError
+
+
+def _number(where: str, key: str, value: Any, *, positive: bool = False, nonneg: bool = False) -> float:
+    if isinstance(value, bool) or not isinstance(value, (int, float, np.integer, np.floating)):
+        raise FieldError(where, key, f"must be a number, got {value!r}")
+    v = float(value)
+    if not math.isfinite(v):
+        raise FieldError(where, key, f"must be finite, got {value!r}")
+    if positive and v <= 0:
+        raise FieldError(where, key, f"must be > 0, got {value!r}")
+    if nonneg and v < 0:
+        raise FieldError(where, key, f"must be >= 0, got {value!r}")
+    return v
+
+
+def _check_keys(where: str, given: Mapping[str, Any], allowed: list[str]) -> None:
+    if not isinstance(given, Mapping):
+        raise FieldError(where, "-", f"must be a mapping, got {type(given).__name__}")
+    for key in given:
+        if key not in allowed:
+            raise FieldError(where, str(key), f"unknown parameter; allowed: {', '.join(allowed)}")
+
+
+@dataclass
+class KernelSpec:
+    """Interaction kernel of eq. (2): w(d) = A exp(-d^2 / 2 sigma^2) - w_inhib."""
+
+    A: float = 0.0
+    sigma: float = 1.0
+    w_inhib: float = 0.0
+
+    def validate(self, where: str) -> None:
+        self.A = _number(where, "kernel.A", self.A, nonneg=True)
+        self.sigma = _number(where, "kernel.sigma", self.sigma, positive=True)
+        self.w_inhib = _number(where, "kernel.w_inhib", self.w_inhib, nonneg=True)
+
+
+@dataclass
+class FieldSpec:
+    """One 1-D field of eq. (1) with its sigmoid (3) and kernel (2).
+
+    ``items`` name subpopulations placed at the centres of ``spacing``-wide
+    bins, so ``size = len(items) * spacing``; a field without items gives its
+    ``size`` directly.
+    """
+
+    name: str
+    items: list[str] = field(default_factory=list)
+    size: int = 0
+    spacing: int = 10
+    dx: float = 1.0
+    tau: float = 0.1
+    h: float = -3.0
+    beta: float = 4.0
+    u0: float = 0.0
+    kernel: KernelSpec = field(default_factory=KernelSpec)
+    input_sigma: float = 1.0
+    noise: float = 0.0
+    periodic: bool = False
+
+    @property
+    def where(self) -> str:
+        return f"field '{self.name}'"
+
+    def validate(self) -> None:
+        w = self.where
+        if not isinstance(self.items, (list, tuple)) or not all(isinstance(i, str) and i for i in self.items):
+            raise FieldError(w, "items", "must be a list of non-empty item names")
+        self.items = list(self.items)
+        dup = {i for i in self.items if self.items.count(i) > 1}
+        if dup:
+            raise FieldError(w, "items", f"names must be unique; repeated: {', '.join(sorted(dup))}")
+        if isinstance(self.spacing, bool) or not isinstance(self.spacing, (int, np.integer)) or self.spacing < 1:
+            raise FieldError(w, "spacing", f"must be a whole number of positions >= 1, got {self.spacing!r}")
+        if self.items:
+            expected = len(self.items) * int(self.spacing)
+            if self.size not in (0, expected):
+                raise FieldError(w, "size", f"{self.size} does not match {len(self.items)} items x spacing {self.spacing} = {expected}; give one or the other")
+            self.size = expected
+        if isinstance(self.size, bool) or not isinstance(self.size, (int, np.integer)) or self.size < 1:
+            raise FieldError(w, "size", f"must be a whole number >= 1 (or give items), got {self.size!r}")
+        self.dx = _number(w, "dx", self.dx, positive=True)
+        self.tau = _number(w, "tau", self.tau, positive=True)
+        self.h = _number(w, "h", self.h)
+        if self.h >= 0:
+            raise FieldError(w, "h", f"the resting level must be negative (h < 0), got {self.h}")
+        self.beta = _number(w, "beta", self.beta, positive=True)
+        self.u0 = _number(w, "u0", self.u0)
+        self.input_sigma = _number(w, "input_sigma", self.input_sigma, positive=True)
+        self.noise = _number(w, "noise", self.noise, nonneg=True)
+        if not isinstance(self.periodic, bool):
+            raise FieldError(w, "periodic", f"must be true or false, got {self.periodic!r}")
+        if not isinstance(self.kernel, KernelSpec):
+            raise FieldError(w, "kernel", "must be a mapping with A, sigma, w_inhib")
+        self.kernel.validate(w)
+
+    def item_index(self, item: str) -> int:
+        """Position index of an item's centre."""
+        try:
+            m = self.items.index(item)
+        except ValueError:
+            raise FieldError(self.where, str(item), f"unknown item; known: {', '.join(self.items) or '(none)'}") from None
+        return m * self.spacing + self.spacing // 2
+
+    @property
+    def item_indices(self) -> np.ndarray:
+        return np.arange(len(self.items)) * self.spacing + self.spacing // 2
+
+    @property
+    def positions(self) -> np.ndarray:
+        """Field positions in field units."""
+        return np.arange(self.size) * self.dx
+
+    @classmethod
+    def from_dict(cls, name: str, d: Mapping[str, Any]) -> "FieldSpec":
+        allowed = [f.name for f in dc_fields(cls) if f.name != "name"]
+        _check_keys(f"field '{name}'", d, allowed)
+        d = dict(d)
+        kernel = d.pop("kernel", {})
+        if isinstance(kernel, Mapping):
+            _check_keys(f"field '{name}'", {f"kernel.{k}": v for k, v in kernel.items()}, ["kernel.A", "kernel.sigma", "kernel.w_inhib"])
+            kernel = KernelSpec(**kernel)
+        spec = cls(name=name, kernel=kernel, **d)
+        spec.validate()
+        return spec
+
+
+@dataclass
+class CouplingSpec:
+    """Input from items of ``source`` to items of ``target``, eq. (4), scaled by ``k``.
+
+    ``table`` maps target item -> {source item: a_mj}; a matrix of shape
+    (target items, source items) is accepted too.
+    """
+
+    source: str
+    target: str
+    k: float = 1.0
+    table: dict[str, dict[str, float]] = field(default_factory=dict)
+    name: str = ""
+
+    def __post_init__(self) -> None:
+        if not self.name:
+            self.name = f"{self.source}->{self.target}"
+
+    @property
+    def where(self) -> str:
+        return f"coupling '{self.name}'"
+
+    def validate(self, fields_by_name: Mapping[str, FieldSpec]) -> None:
+        w = self.where
+        for key in ("source", "target"):
+            ref = getattr(self, key)
+            if ref not in fields_by_name:
+                raise FieldError(w, key, f"unknown field {ref!r}; known: {', '.join(fields_by_name)}")
+        src, tgt = fields_by_name[self.source], fields_by_name[self.target]
+        if not src.items or not tgt.items:
+            raise FieldError(w, "source" if not src.items else "target", "couplings connect named items; that field has none")
+        self.k = _number(w, "k", self.k)
+        if isinstance(self.table, (list, tuple, np.ndarray)):
+            arr = np.asarray(self.table, dtype=float)
+            if arr.shape != (len(tgt.items), len(src.items)):
+                raise FieldError(w, "table", f"matrix shape {arr.shape} does not match (target items, source items) = ({len(tgt.items)}, {len(src.items)})")
+            self.table = {t: {s: float(arr[i, j]) for j, s in enumerate(src.items) if arr[i, j] != 0.0} for i, t in enumerate(tgt.items)}
+        if not isinstance(self.table, Mapping):
+            raise FieldError(w, "table", "must map target item -> {source item: weight}")
+        clean: dict[str, dict[str, float]] = {}
+        for t, row in self.table.items():
+            if t not in tgt.items:
+                raise FieldError(w, f"table.{t}", f"unknown item of target field '{tgt.name}'; known: {', '.join(tgt.items)}")
+            if not isinstance(row, Mapping):
+                raise FieldError(w, f"table.{t}", "must map source item -> weight")
+            clean[t] = {}
+            for s, a in row.items():
+                if s not in src.items:
+                    raise FieldError(w, f"table.{t}.{s}", f"unknown item of source field '{src.name}'; known: {', '.join(src.items)}")
+                clean[t][s] = _number(w, f"table.{t}.{s}", a)
+        self.table = clean
+
+    def matrix(self, fields_by_name: Mapping[str, FieldSpec]) -> np.ndarray:
+        """a_mj as an array (target items x source items)."""
+        src, tgt = fields_by_name[self.source], fields_by_name[self.target]
+        a = np.zeros((len(tgt.items), len(src.items)))
+        for t, row in self.table.items():
+            for s, v in row.items():
+                a[tgt.items.index(t), src.items.index(s)] = v
+        return a
+
+    @classmethod
+    def from_dict(cls, d: Mapping[str, Any], index: int) -> "CouplingSpec":
+        where = f"coupling #{index}"
+        _check_keys(where, d, ["source", "target", "k", "table", "name"])
+        for key in ("source", "target"):
+            if key not in d:
+                raise FieldError(where, key, "is required")
+        return cls(**d)
+
+
+@dataclass
+class NetworkSpec:
+    """Fields and couplings of one network, stepped with ``dt`` seconds."""
+
+    dt: float = 0.005
+    fields: dict[str, FieldSpec] = field(default_factory=dict)
+    couplings: list[CouplingSpec] = field(default_factory=list)
+
+    def validate(self) -> None:
+        self.dt = _number("network", "dt", self.dt, positive=True)
+        if not self.fields:
+            raise FieldError("network", "fields", "a network needs at least one field")
+        for f in self.fields.values():
+            f.validate()
+            # Explicit Euler on tau du/dt = -u + ...: dt >= 2 tau diverges and
+            # dt >= tau overshoots; half of tau is the coarsest step we accept.
+            if self.dt > f.tau / 2:
+                raise FieldError(f.where, "tau", f"dt={self.dt} s is too large for a stable Euler step with tau={f.tau} s; need dt <= tau/2")
+        names = set()
+        for c in self.couplings:
+            c.validate(self.fields)
+            if c.name in names:
+                raise FieldError(c.where, "name", "two couplings share this name; give one a distinct 'name'")
+            names.add(c.name)
+
+    @classmethod
+    def from_dict(cls, d: Mapping[str, Any]) -> "NetworkSpec":
+        _check_keys("network", d, ["dt", "fields", "couplings"])
+        fields_d = d.get("fields", {})
+        if not isinstance(fields_d, Mapping):
+            raise FieldError("network", "fields", "must map field name -> parameters")
+        couplings_d = d.get("couplings", []) or []
+        if not isinstance(couplings_d, (list, tuple)):
+            raise FieldError("network", "couplings", "must be a list of couplings")
+        spec = cls(
+            dt=d.get("dt", 0.005),
+            fields={str(n): FieldSpec.from_dict(str(n), p or {}) for n, p in fields_d.items()},
+            couplings=[CouplingSpec.from_dict(c, i) for i, c in enumerate(couplings_d)],
+        )
+        spec.validate()
+        return spec
+
+    def coupling(self, name: str) -> CouplingSpec:
+        for c in self.couplings:
+            if c.name == name:
+                return c
+        raise FieldError("network", name, f"unknown coupling; known: {', '.join(c.name for c in self.couplings) or '(none)'}")
+
+    def field(self, name: str) -> FieldSpec:
+        try:
+            return self.fields[name]
+        except KeyError:
+            raise FieldError("network", name, f"unknown field; known: {', '.join(self.fields)}") from None
