@@ -108,7 +108,7 @@ def main() -> None:
     ap.add_argument("--steps", type=int, default=2000)
     args = ap.parse_args()
 
-    print(f"{'network':<34}{'path':<14}{'us/step':>10}{'steps/s':>12}")
+    print(f"{"network":<38}{'path':<14}{'us/step':>10}{'steps/s':>12}")
     for label, spec_d in (("seed-shaped: 12 fields, 100-200 pos", seed_shaped_spec()), ("100 fields x 100 positions", grid_spec())):
         spec = NetworkSpec.from_dict(spec_d)
         naive = NaiveNetwork(spec)
@@ -120,7 +120,7 @@ def main() -> None:
             results.append((f"{backend} batch", per_step_us(lambda: net.step(1), steps)))
             results.append((f"{backend} x100", per_step_us(lambda: net.step(100), max(2, steps // 100)) / 100))
         for path, us in results:
-            print(f"{label:<34}{path:<14}{us:>10.1f}{1e6 / us:>12.0f}")
+            print(f"{label:<38}{path:<14}{us:>10.1f}{1e6 / us:>12.0f}")
     print("goal: <= 20 us/step for the seed-shaped network (numba batch)")
 
 

@@ -259,3 +259,17 @@ def test_field2d_holds_a_peak_through_a_gap_and_follows_a_moving_input():
     f.step(0.005, 40)
     x, _, _ = f.peak()
     assert abs(x - 0.2) < 0.015
+
+
+def test_compiled_sigmoid_matches_the_exact_one_over_the_whole_range():
+    from scipy.special import expit
+
+    from assistbot.fields.stepping import numba_sigmoid
+
+    u = np.concatenate([np.linspace(-400, 400, 200_001), [-1e6, 1e6, 0.0]])
+    got = numba_sigmoid(u, 4.0, 0.5)
+    want = expit(4.0 * (u - 0.5))
+    assert not np.isnan(got).any()
+    assert np.max(np.abs(got - want)) < 1e-15
+    tiny = want > 1e-300
+    assert np.max(np.abs(got - want)[tiny] / want[tiny]) < 1e-14
