@@ -108,7 +108,7 @@ def main() -> None:
     ap.add_argument("--steps", type=int, default=2000)
     args = ap.parse_args()
 
-    print(f"{"network":<38}{'path':<14}{'us/step':>10}{'steps/s':>12}")
+    print(f"{'network':<38}{'path':<14}{'us/step':>10}{'steps/s':>12}")
     for label, spec_d in (("seed-shaped: 12 fields, 100-200 pos", seed_shaped_spec()), ("100 fields x 100 positions", grid_spec())):
         spec = NetworkSpec.from_dict(spec_d)
         naive = NaiveNetwork(spec)
