@@ -85,7 +85,7 @@ class Field2D:
             return None
         f = self.output()
         # centroid over the supra-threshold blob around the maximum gives a sub-cell estimate
-        r = max(1, int(round(2 * self.sigma / self.dx)))
+        r = max(1, int(round(4 * self.sigma / self.dx)))
         y0, y1 = max(0, iy - r), min(self.shape[0], iy + r + 1)
         x0, x1 = max(0, ix - r), min(self.shape[1], ix + r + 1)
         w = f[y0:y1, x0:x1]

@@ -1,0 +1,71 @@
+"""Where the hand should go: a 2-D dynamic field over the table plane whose peak is the IK target.
+
+Perception of the current action's target (an object, the human's hand)
+arrives as a Gaussian input at its table position. The field's
+self-sustained peak is the estimate the arm moves to: it stays in place
+through gaps in perception (a missed camera frame, an occluded object) and
+is dragged along by a moving input, smoothly, at the field's time scale.
+
+Coordinates are the table frame in metres (x, y on the surface).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+from assistbot.fields import Field2D
+
+
+@dataclass
+class TargetFieldParams:
+    # the robot's side of the table and the hand-over zone across the middle line
+    x_range: tuple[float, float] = (-0.25, 0.7)
+    y_range: tuple[float, float] = (-0.5, 0.5)
+    resolution: float = 0.025  # m per field position
+    tau: float = 0.03  # s
+    h: float = -3.0
+    beta: float = 4.0
+    # per m^2: sustains a peak without input. Weak global inhibition lets a
+    # moving input drag the peak instead of being suppressed by it.
+    A: float = 1500.0
+    sigma: float = 0.03  # m
+    w_inhib: float = 50.0
+    input_amplitude: float = 10.0
+    input_sigma: float = 0.03  # m
+    dt: float = 0.01  # s per Euler step: two per 50 Hz control tick
+
+
+class TargetField:
+    def __init__(self, params: TargetFieldParams | None = None) -> None:
+        self.p = p = params or TargetFieldParams()
+        nx = int(round((p.x_range[1] - p.x_range[0]) / p.resolution)) + 1
+        ny = int(round((p.y_range[1] - p.y_range[0]) / p.resolution)) + 1
+        self.field = Field2D("target", shape=(ny, nx), origin=(p.x_range[0], p.y_range[0]), dx=p.resolution,
+                             tau=p.tau, h=p.h, beta=p.beta, A=p.A, sigma=p.sigma, w_inhib=p.w_inhib)
+        self.field.check_dt(p.dt)
+        self._t_pending = 0.0
+
+    def observe(self, xy: tuple[float, float] | None, confidence: float = 1.0) -> None:
+        """The target as perceived now; None when it is not seen (the peak then holds)."""
+        self.field.clear_input()
+        if xy is not None:
+            self.field.add_gaussian((float(xy[0]), float(xy[1])), self.p.input_amplitude * float(confidence), self.p.input_sigma)
+
+    def advance(self, seconds: float) -> None:
+        """Integrate the field over ``seconds`` of simulated time (whole Euler steps, remainder carried)."""
+        self._t_pending += seconds
+        n = int(self._t_pending / self.p.dt + 1e-9)
+        if n:
+            self.field.step(self.p.dt, n)
+            self._t_pending -= n * self.p.dt
+
+    def target(self) -> tuple[float, float] | None:
+        """The peak's position (m), or None while there is no peak."""
+        peak = self.field.peak(threshold=0.0)
+        return None if peak is None else (peak[0], peak[1])
+
+    def reset(self) -> None:
+        """Forget the target (a new action begins)."""
+        self.field.reset()
+        self.field.clear_input()
+        self._t_pending = 0.0
