@@ -134,30 +134,31 @@ def _both(obj_state: str, w: float) -> dict[str, float]:
 
 ASL_CHAINS: tuple[Chain, ...] = (
     Chain("Reach-grasp-SG-closed-bottle",
-          {"reach_bottle": 0.5, "grasp_sg_bottle": grip_prior("grasp_sg", "bottle", "ask-help"), "hold_out_bottle": 0.8, "pour": -1.0},
+          {"reach_bottle": 0.4, "grasp_sg_bottle": grip_prior("grasp_sg", "bottle", "ask-help"), "hold_out_bottle": 0.6, "pour": -1.0},
           _both("bottle_closed", 1.0), {"Open-bottle": 0.5}),
     Chain("Reach-grasp-AG-closed-bottle-to-hand-over",
-          {"reach_bottle": 0.5, "grasp_ag_bottle": grip_prior("grasp_ag", "bottle", "hand-over"), "hold_out_bottle": 0.8},
+          {"reach_bottle": 0.4, "grasp_ag_bottle": grip_prior("grasp_ag", "bottle", "hand-over"), "hold_out_bottle": 0.6},
           _both("bottle_closed", 1.0), {"Open-bottle": 0.5}),
     Chain("Reach-grasp-SG-open-bottle-to-pour",
-          {"reach_bottle": 0.5, "grasp_sg_bottle": grip_prior("grasp_sg", "bottle", "pour"), "pour": 1.2, "hold_out_bottle": -0.8},
+          {"reach_bottle": 0.4, "grasp_sg_bottle": grip_prior("grasp_sg", "bottle", "pour"), "pour": 1.2, "hold_out_bottle": -0.8},
           {**_both("bottle_open", 0.6), **_both("bottle_closed", 0.3)}, {"Fill-glass": 0.5}),
     Chain("Reach-grasp-AG-open-bottle-to-hand-over",
-          {"reach_bottle": 0.5, "grasp_ag_bottle": grip_prior("grasp_ag", "bottle", "hand-over"), "hold_out_bottle": 0.8},
+          {"reach_bottle": 0.4, "grasp_ag_bottle": grip_prior("grasp_ag", "bottle", "hand-over"), "hold_out_bottle": 0.6},
           _both("bottle_open", 1.0), {"Fill-glass": 0.5}),
     Chain("Reach-grasp-AG-glass-to-hand-over",
-          {"reach_glass": 0.5, "grasp_ag_glass": grip_prior("grasp_ag", "glass", "hand-over"), "hold_out_glass": 0.8},
+          {"reach_glass": 0.4, "grasp_ag_glass": grip_prior("grasp_ag", "glass", "hand-over"), "hold_out_glass": 0.6},
           {**_both("glass_inverted", 0.6), **_both("glass_empty", 0.6), **_both("glass_full", 0.3)},
           {"Turn-glass": 0.3, "Fill-glass": 0.5}),
     Chain("Reach-grasp-SG-glass-to-turn",
-          {"reach_glass": 0.5, "grasp_sg_glass": grip_prior("grasp_sg", "glass", "turn"), "drink": -1.0},
+          {"reach_glass": 0.4, "grasp_sg_glass": grip_prior("grasp_sg", "glass", "turn"), "drink": -1.0},
           _both("glass_inverted", 1.0), {"Turn-glass": 0.5}),
     Chain("Reach-grasp-SG-full-glass-to-drink",
-          {"reach_glass": 0.5, "grasp_sg_glass": grip_prior("grasp_sg", "glass", "drink"), "drink": 1.2},
+          {"reach_glass": 0.4, "grasp_sg_glass": grip_prior("grasp_sg", "glass", "drink"), "drink": 1.2},
           {**_both("glass_full", 1.0), **_both("glass_empty", 0.3)}, {}),
-    Chain("Request-object-with-open-hand", {"open_hand_request": 2.0}, {}, {}),
-    Chain("Point-to-bottle", {"point_bottle": 2.0}, {}, {}),
-    Chain("Point-to-glass", {"point_glass": 2.0}, {}, {}),
+    # a communicative gesture is one clear cue on its own
+    Chain("Request-object-with-open-hand", {"open_hand_request": 3.8}, {}, {}),
+    Chain("Point-to-bottle", {"point_bottle": 3.8}, {}, {}),
+    Chain("Point-to-glass", {"point_glass": 3.8}, {}, {}),
 )
 ASL_ITEMS: tuple[str, ...] = tuple(c.name for c in ASL_CHAINS)
 
@@ -180,9 +181,9 @@ INTENTIONS: tuple[Intention, ...] = (
     Intention("Remove-stopper",
               {"Reach-grasp-SG-closed-bottle": 1.5, "Reach-grasp-AG-closed-bottle-to-hand-over": 1.5},
               {"Open-bottle": 1.0}),
-    Intention("Pour", {"Reach-grasp-SG-open-bottle-to-pour": 2.0}, {"Fill-glass": 0.5}),
-    Intention("Turn-glass", {"Reach-grasp-SG-glass-to-turn": 2.0}, {"Turn-glass": 0.5}),
-    Intention("Drink", {"Reach-grasp-SG-full-glass-to-drink": 2.0}, {"Hand-over-full-glass": 0.3}),
+    Intention("Pour", {"Reach-grasp-SG-open-bottle-to-pour": 2.5}, {"Fill-glass": 0.5}),
+    Intention("Turn-glass", {"Reach-grasp-SG-glass-to-turn": 2.5}, {"Turn-glass": 0.5}),
+    Intention("Drink", {"Reach-grasp-SG-full-glass-to-drink": 2.5}, {"Hand-over-full-glass": 0.3}),
     Intention("Get-glass",
               {"Request-object-with-open-hand": 1.0, "Point-to-glass": 2.0},
               {"Turn-glass": 0.8, "Fill-glass": 0.3, "Hand-over-full-glass": 0.8},
@@ -191,8 +192,8 @@ INTENTIONS: tuple[Intention, ...] = (
               {"Request-object-with-open-hand": 1.0, "Point-to-bottle": 2.0},
               {"Open-bottle": 0.3, "Fill-glass": 0.8},
               {"bottle_closed_RWS": 0.5, "bottle_open_RWS": 0.6}),
-    Intention("Give-glass", {"Reach-grasp-AG-glass-to-hand-over": 2.0}, {"Turn-glass": 0.3, "Fill-glass": 0.5}),
-    Intention("Give-bottle", {"Reach-grasp-AG-open-bottle-to-hand-over": 2.0}, {"Fill-glass": 0.5}),
+    Intention("Give-glass", {"Reach-grasp-AG-glass-to-hand-over": 2.5}, {"Turn-glass": 0.3, "Fill-glass": 0.5}),
+    Intention("Give-bottle", {"Reach-grasp-AG-open-bottle-to-hand-over": 2.5}, {"Fill-glass": 0.5}),
 )
 IL_ITEMS: tuple[str, ...] = tuple(i.name for i in INTENTIONS)
 
@@ -214,9 +215,9 @@ class Error:
 ERRORS: tuple[Error, ...] = (
     # held from the side, the bottle cannot be taken safely, and the robot's hand is too big for the stopper
     Error("Cannot-remove-stopper", {"Remove-stopper": 1.0}, {"Reach-grasp-SG-closed-bottle": 1.5}),
-    Error("Pour-from-closed-bottle", {"Pour": 1.0}, {}, _both("bottle_closed", 1.5)),
+    Error("Pour-from-closed-bottle", {"Pour": 1.0}, {}, _both("bottle_closed", 1.2)),
     Error("Pour-into-inverted-glass", {"Pour": 1.0}, {}, _both("glass_inverted", 1.2)),
-    Error("Drink-from-empty-glass", {"Drink": 1.0}, {}, _both("glass_empty", 1.5)),
+    Error("Drink-from-empty-glass", {"Drink": 1.0}, {}, _both("glass_empty", 1.2)),
 )
 AML_ITEMS: tuple[str, ...] = tuple(e.name for e in ERRORS)
 
@@ -257,28 +258,28 @@ class RobotAction:
 _ALL_ERRORS = {e.name: 1.0 for e in ERRORS}
 
 ROBOT_ACTIONS: tuple[RobotAction, ...] = (
-    RobotAction("Communicate-Error", None, "speak", errors={k: 3.0 for k in _ALL_ERRORS}),
+    RobotAction("Communicate-Error", None, "speak", errors={k: 3.5 for k in _ALL_ERRORS}),
     RobotAction("Grasp-hold-bottle-to-remove-cup", "bottle", "grasp_hold_bottle",
-                intentions={"Remove-stopper": 1.4, "Get-bottle": -1.0},
-                objects={"bottle_closed_RWS": 1.0, "bottle_closed_HWS": 0.3},
+                intentions={"Remove-stopper": 1.6, "Get-bottle": -1.0},
+                objects={"bottle_closed_RWS": 1.2, "bottle_closed_HWS": 0.6},
                 present={"Open-bottle": 1.0}, errors={"Cannot-remove-stopper": -3.0}, initiative=1.0,
                 requires={"bottle_state": ("closed",), "bottle_zone": ("RWS", "held_out")},
                 effects={"bottle_state": "open", "bottle_zone": "RWS"}, response="remove_stopper"),
     RobotAction("Reach-and-turn-glass", "glass", "turn_glass",
                 intentions={"Get-glass": 0.8, "Turn-glass": -1.0},
-                objects={"glass_inverted_RWS": 1.0, "bottle_open_RWS": 0.8, "bottle_open_HWS": -0.3},
+                objects={"glass_inverted_RWS": 0.8, "bottle_open_RWS": 0.6, "bottle_open_HWS": -0.3},
                 present={"Turn-glass": 1.0}, initiative=1.0,
                 requires={"glass_state": ("inverted",), "glass_zone": ("RWS",)}, effects={"glass_state": "empty"}),
     RobotAction("Reach-turn-and-hand-over-glass", "glass", "turn_and_hand_over_glass",
                 intentions={"Get-glass": 1.5, "Turn-glass": -1.0},
                 # the seed: an open bottle in RWS inhibits handing the glass over (the robot fills it first)
-                objects={"glass_inverted_RWS": 1.0, "bottle_open_RWS": -1.5, "bottle_open_HWS": 0.4, "bottle_closed_HWS": 0.2},
+                objects={"glass_inverted_RWS": 0.8, "bottle_open_RWS": -1.5, "bottle_open_HWS": 0.4, "bottle_closed_HWS": 0.2},
                 present={"Turn-glass": 1.0}, initiative=0.9,
                 requires={"glass_state": ("inverted",), "glass_zone": ("RWS",)},
                 effects={"glass_state": "empty", "glass_zone": "HWS"}, response="take_object"),
     RobotAction("Reach-grasp-open-bottle-fill-glass", "glass", "fill_glass",
                 intentions={"Get-bottle": -1.0},
-                objects={"bottle_open_RWS": 1.0, "glass_empty_RWS": 1.0, "glass_empty_HWS": -1.0},
+                objects={"bottle_open_RWS": 0.7, "glass_empty_RWS": 0.7, "glass_empty_HWS": -1.0},
                 present={"Fill-glass": 1.0}, initiative=1.0,
                 requires={"bottle_state": ("open",), "bottle_zone": ("RWS",), "glass_state": ("empty",), "glass_zone": ("RWS",)},
                 effects={"glass_state": "full"}),
@@ -289,7 +290,8 @@ ROBOT_ACTIONS: tuple[RobotAction, ...] = (
                 effects={"glass_zone": "HWS"}, response="take_object"),
     RobotAction("Request-glass", "glass", "hold_out_open_hand",
                 intentions={"Give-glass": 1.0},
-                objects={"glass_empty_HWS": 1.0, "glass_inverted_HWS": 0.8, "bottle_open_RWS": 0.8},
+                objects={"glass_empty_HWS": 1.0, "glass_inverted_HWS": 0.8, "bottle_open_RWS": 0.4,
+                         "glass_empty_RWS": -1.0, "glass_inverted_RWS": -1.0, "glass_full_RWS": -1.0},
                 present={"Fill-glass": 1.0, "Turn-glass": 0.3}, initiative=1.0,
                 requires={"glass_zone": ("HWS",), "glass_state": ("inverted", "empty")},
                 effects={"glass_zone": "RWS"}, response="give_object"),
@@ -304,15 +306,17 @@ ROBOT_ACTIONS: tuple[RobotAction, ...] = (
                 present={"Fill-glass": 0.6}, initiative=0.5,
                 requires={"bottle_zone": ("RWS",)}, effects={"bottle_zone": "HWS"}, response="take_object"),
     RobotAction("Receive-object", "held_out", "receive_object",
-                intentions={"Give-glass": 2.0, "Give-bottle": 2.0},
+                intentions={"Give-glass": 2.5, "Give-bottle": 2.5},
+                objects={"bottle_open_HWS": 0.6, "bottle_closed_HWS": 0.6, "glass_inverted_HWS": 0.6, "glass_empty_HWS": 0.6,
+                         "glass_full_HWS": 0.6},
                 requires={"bottle_zone": ("held_out",)}, effects={"bottle_zone": "RWS"}),
     RobotAction("Suggest-drink", "glass", "speak",
                 intentions={"Drink": -2.0},
                 objects={"glass_full_HWS": 1.5}, past={"Hand-over-full-glass": 1.0}, initiative=1.0,
                 requires={"glass_state": ("full",), "glass_zone": ("HWS",)}, effects={"drunk": True}, response="drink"),
     RobotAction("Wait", None, "none",
-                intentions={"Turn-glass": 2.0, "Pour": 2.0, "Drink": 2.0},
-                objects={"glass_inverted_HWS": 0.5, "bottle_open_HWS": 0.3, "glass_full_HWS": 0.5}),
+                intentions={"Turn-glass": 2.5, "Pour": 2.5, "Drink": 2.5},
+                objects={"glass_inverted_HWS": 0.6, "bottle_open_HWS": 0.6, "glass_full_HWS": 0.6}),
 )
 AEL_ITEMS: tuple[str, ...] = tuple(a.name for a in ROBOT_ACTIONS)
 ROBOT_ACTION_BY_NAME: dict[str, RobotAction] = {a.name: a for a in ROBOT_ACTIONS}

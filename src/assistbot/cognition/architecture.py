@@ -1,0 +1,268 @@
+"""The layered field architecture: Percept in, Decision out.
+
+Layers (fields of `assistbot.fields`, items from `assistbot.task`):
+
+- OL: observed motor primitives (memory of the act in progress);
+- OML: object x state x zone memory (survives percept gaps);
+- CSGL past / present / future: achieved, enabled-and-first, not-yet sub-goals;
+- INI: the robot's initiative, rising slowly while the partner shows no act;
+- ASL: the partner's goal-directed action chain (from OL + OML + CSGL);
+- IL: the partner's intention (from ASL + CSGL + OML);
+- AML: mismatch of the intention with what is possible (IL + ASL/OML);
+- AEL: the complementary action (IL, OML, CSGL, AML, INI), one winner that
+  sustains itself until the robot reports it finished or failed.
+
+Decisions come from the field dynamics only: the percept becomes Gaussian
+inputs; the read-out watches peaks (a decision is the AEL peak that stayed
+above threshold for ``readout.hold`` s; an utterance is spoken once per rise
+of a pool's peak in ASL, IL, AML, AEL).
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Any, Iterable, Mapping
+
+import numpy as np
+
+from assistbot import task
+from assistbot.cognition.config import LAYERS, CognitionConfig
+from assistbot.cognition.percept import Decision, Percept, Said
+from assistbot.fields import Network
+
+SPOKEN_LAYERS = ("ASL", "IL", "AML", "AEL")
+
+
+def ol_items_of(percept: Percept) -> list[str]:
+    """OL items evidenced by the hand percept (primitive + object it is directed at)."""
+    h = percept.hand
+    out: list[str] = []
+    if not h.seen:
+        return out
+    p = h.posture
+    if p == "reach" and h.directed_at:
+        out.append(f"reach_{h.directed_at}")
+    elif p in ("grasp_ag", "grasp_sg") and h.object_in_hand:
+        out.append(f"{p}_{h.object_in_hand}")
+    elif p == "pointing" and (h.pointed_at or h.directed_at):
+        out.append(f"point_{h.pointed_at or h.directed_at}")
+    elif p == "open_palm_request":
+        out.append("open_hand_request")
+    elif p in ("remove_stopper", "pour", "drink"):
+        out.append(p)
+    if h.held_out and h.object_in_hand:
+        out.append(f"hold_out_{h.object_in_hand}")
+    return out
+
+
+class Cognition:
+    """The architecture on one `Network`; feed `update(percept)`, read the returned `Decision`.
+
+    ``config``: a `CognitionConfig`, a nested dict, or None for the default;
+    ``overrides``: {path: value} applied on top. ``backend``/``seed`` go to the
+    network. Time is the network's simulated time ``t`` (s).
+    """
+
+    def __init__(self, config: CognitionConfig | Mapping[str, Any] | None = None, overrides: Mapping[str, Any] | None = None,
+                 backend: str = "auto", seed: int | None = 0) -> None:
+        if isinstance(config, CognitionConfig):
+            self.config = config.copy()
+        else:
+            self.config = CognitionConfig(config)
+        if overrides:
+            self.config.update(overrides)
+        self.backend = backend
+        self.seed = seed
+        self._build()
+
+    # -- construction -------------------------------------------------------------------
+    def _build(self) -> None:
+        self.net = Network.from_dict(self.config.network_dict(), backend=self.backend, seed=self.seed)
+        self.layers = LAYERS
+        self._thr_idx = {name: self.net.field(name).item_indices for name in LAYERS}
+        self.reset()
+
+    def set(self, path: str, value: Any) -> None:
+        """Change one parameter (see `CognitionConfig`); the network is rebuilt and reset."""
+        self.config.set(path, value)
+        self._build()
+
+    def reset(self) -> None:
+        self.net.reset()
+        self.net.clear_stimuli()
+        s = self.config.data["stimulus"]
+        for g in task.SUBGOALS:
+            self.net.set_stimulus("CSGL_present", g, float(s["present_drive"][g]))
+            self.net.set_stimulus("CSGL_future", g, float(s["future_drive"]))
+        self.net.set_stimulus("INI", "take-initiative", float(s["ini_drive"]))
+        self.decision: str | None = None       # the committed AEL winner
+        self.decision_t: float | None = None
+        self.error: str | None = None
+        self._up: dict[str, np.ndarray] = {L: np.zeros(len(LAYERS[L]), bool) for L in SPOKEN_LAYERS}
+        self._above_since: dict[str, np.ndarray] = {L: np.full(len(LAYERS[L]), np.nan) for L in SPOKEN_LAYERS}
+        self._release_until = -1.0
+        self._habituation: dict[str, float] = {}  # action -> time released
+        self._pending: list[Said] = []
+        self._new = False
+        self._released: str | None = None
+        self.log: list[Said] = []
+        self.history: list[tuple[float, str, str]] = []  # (t, "decide"/"release", action)
+
+    # -- input --------------------------------------------------------------------------
+    def perceive(self, percept: Percept) -> None:
+        """Turn a percept into held Gaussian inputs of OL and OML; release on finished/failed."""
+        s = self.config.data["stimulus"]
+        net = self.net
+        # OL: the motor primitives seen now; a hand at rest clears the memory of the act
+        h = percept.hand
+        active = set(ol_items_of(percept))
+        for item in task.OL_ITEMS:
+            if item in active:
+                amp = s["ol"] * h.confidence
+            elif h.seen and h.posture == "none":
+                amp = s["ol_rest"]
+            else:
+                amp = 0.0
+            net.set_stimulus("OL", item, amp)
+        # OML: each seen object at its (state, zone); evidence against its other items
+        for obj, states in task.OBJECT_STATES.items():
+            o = percept.objects.get(obj)
+            here = task.oml_item(obj, o.state, o.zone) if (o is not None and o.seen) else None
+            for st in states:
+                for z in task.ZONES:
+                    item = task.oml_item(obj, st, z)
+                    if here is None:
+                        amp = 0.0
+                    elif item == here:
+                        amp = s["oml"] * o.confidence
+                    else:
+                        amp = s["oml_against"] * o.confidence
+                    net.set_stimulus("OML", item, amp)
+        r = percept.robot
+        if r.status in ("finished", "failed") and self.decision is not None and (r.action is None or r.action == self.decision):
+            self.release(r.status)
+
+    def release(self, why: str = "finished") -> None:
+        """End the current decision: a transient inhibition of AEL and a habituation of the released action."""
+        if self.decision is None:
+            return
+        rel = self.config.data["release"]
+        self._release_until = self.net.t + float(rel["duration"])
+        self._habituation[self.decision] = self.net.t
+        self.history.append((self.net.t, f"release ({why})", self.decision))
+        self._released = self.decision
+        self.decision = None
+        self.decision_t = None
+        self.error = None
+        self._apply_release_inputs()
+
+    def _apply_release_inputs(self) -> None:
+        rel = self.config.data["release"]
+        t = self.net.t
+        releasing = t < self._release_until
+        for a in task.AEL_ITEMS:
+            amp = float(rel["inhibition"]) if releasing else 0.0
+            if a in self._habituation:
+                amp += float(rel["habituation"]) * math.exp(-(t - self._habituation[a]) / float(rel["habituation_tau"]))
+            self.net.set_stimulus("AEL", a, amp)
+
+    # -- time ---------------------------------------------------------------------------
+    def advance(self, t_target: float, readout_every: int = 4) -> None:
+        """Step the fields up to time ``t_target`` (s), reading peaks every few steps."""
+        dt = self.net.dt
+        n = int(round((t_target - self.net.t) / dt))
+        while n > 0:
+            k = min(n, readout_every)
+            self.net.step(k)
+            n -= k
+            self._readout()
+
+    def run(self, seconds: float) -> None:
+        self.advance(self.net.t + seconds)
+
+    def update(self, percept: Percept) -> Decision:
+        """Run the fields up to ``percept.t`` on the inputs held so far, then take in the percept (it acts from
+        ``percept.t`` on); return the decision and the utterances of peaks that rose meanwhile."""
+        self.advance(percept.t)
+        self.perceive(percept)
+        return self.current()
+
+    def current(self) -> Decision:
+        d = Decision(
+            t=self.net.t,
+            action=self.decision,
+            target=self.target_of(self.decision),
+            new=self._new,
+            released=self._released,
+            error=self.error,
+            utterances=self._pending,
+            peaks={L: self.peaks(L) for L in LAYERS},
+        )
+        self._pending = []
+        self._new = False
+        self._released = None
+        return d
+
+    # -- read-out -----------------------------------------------------------------------
+    def peaks(self, layer: str) -> list[str]:
+        return self.net.peaks(layer, float(self.config.data["readout"]["threshold"]))
+
+    def _readout(self) -> None:
+        ro = self.config.data["readout"]
+        thr, off, hold = float(ro["threshold"]), float(ro["off"]), float(ro["hold"])
+        t = self.net.t
+        if self._habituation or self._release_until >= 0:
+            self._apply_release_inputs()
+            if t >= self._release_until:
+                self._release_until = -1.0
+            self._habituation = {a: t0 for a, t0 in self._habituation.items()
+                                 if t - t0 < 5 * float(self.config.data["release"]["habituation_tau"])}
+        for L in SPOKEN_LAYERS:
+            u = self.net.u(L)[self._thr_idx[L]]
+            since = self._above_since[L]
+            above = u > thr
+            since[above & np.isnan(since)] = t
+            since[~above] = np.nan
+            up = self._up[L]
+            rising = above & ~up & (t - np.nan_to_num(since, nan=t) >= hold - 1e-9)
+            up[u < off] = False
+            for i in np.nonzero(rising)[0]:
+                if self._rose(L, LAYERS[L][i], t):
+                    up[i] = True
+
+    def _rose(self, layer: str, item: str, t: float) -> bool:
+        """A pool's peak has stayed up for ``hold``: speak (and for AEL, decide). False if not taken."""
+        utt = task.UTTERANCES[layer][item]
+        if layer == "AEL":
+            if self.decision is None and t >= self._release_until:
+                u = self.net.u("AEL")[self._thr_idx["AEL"]]
+                if LAYERS["AEL"][int(np.argmax(u))] == item:
+                    self.decision, self.decision_t, self._new = item, t, True
+                    self.history.append((t, "decide", item))
+                    if item == "Communicate-Error":
+                        errs = self.peaks("AML")
+                        self.error = errs[0] if errs else None
+                        if self.error:
+                            e = task.UTTERANCES["AML"][self.error]
+                            utt = task.Utterance("AEL", item, f"{utt.text} {e.text}", e.tag)
+                else:
+                    return False
+            else:
+                return False
+        said = Said(t, layer, item, utt.text, utt.tag)
+        self._pending.append(said)
+        self.log.append(said)
+        return True
+
+    def target_of(self, action: str | None) -> str | None:
+        if action is None:
+            return None
+        target = task.ROBOT_ACTION_BY_NAME[action].target
+        if target == "held_out":
+            acts = self.net.activities("OL")
+            return "bottle" if acts["hold_out_bottle"] >= acts["hold_out_glass"] else "glass"
+        return target
+
+    # -- recording ----------------------------------------------------------------------
+    def record(self, layers: Iterable[str] | None = None, every: int = 4):
+        return self.net.record(list(layers) if layers is not None else list(LAYERS), every=every)

@@ -1,0 +1,91 @@
+"""The seed's figures from a replay: ASL and AEL input/activity (Fig. 3 B, C), CSGL past/present/future (Fig. 4/5 B)."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+from assistbot.cognition.replay import Replay
+
+
+def _pyplot():
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    return plt
+
+
+def plot_csgl(rep: Replay, path: str | Path, title: str = "") -> Path:
+    """Three panels, CSGL past / present / future: activity at each sub-goal over time."""
+    plt = _pyplot()
+    rec = rep.recorder
+    t = rec.times
+    fig, axes = plt.subplots(3, 1, figsize=(8, 6), sharex=True)
+    for ax, layer, label in zip(axes, ("CSGL_past", "CSGL_present", "CSGL_future"), ("CSGL - Past", "CSGL - Present", "CSGL - Future")):
+        for item, trace in rec.item_traces(layer, "u").items():
+            ax.plot(t, trace, lw=1.4, label=item)
+        ax.axhline(0.0, color="k", lw=0.6, ls="--")
+        ax.set_ylabel(label)
+    axes[0].legend(loc="center left", bbox_to_anchor=(1.01, 0.5), fontsize=7, frameon=False)
+    _mark_decisions(rep, axes)
+    axes[-1].set_xlabel("time (s)")
+    axes[0].set_title(title or f"{rep.timeline.name}: common sub-goals")
+    fig.tight_layout()
+    path = Path(path)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+    return path
+
+
+def plot_layer(rep: Replay, layer: str, path: str | Path, title: str = "") -> Path:
+    """Input (top) and activity (bottom) of one layer, one line per item, decisions marked."""
+    plt = _pyplot()
+    rec = rep.recorder
+    t = rec.times
+    fig, (ax_s, ax_u) = plt.subplots(2, 1, figsize=(9, 5.5), sharex=True)
+    s_tr, u_tr = rec.item_traces(layer, "s"), rec.item_traces(layer, "u")
+    items = list(u_tr)
+    cmap = plt.get_cmap("tab20" if len(items) > 10 else "tab10")
+    for i, item in enumerate(items):
+        color = cmap(i % cmap.N)
+        ax_s.plot(t, s_tr[item], color=color, lw=1.3)
+        ax_u.plot(t, u_tr[item], color=color, lw=1.3, label=item)
+    ax_u.axhline(0.0, color="k", lw=0.6, ls="--")
+    ax_s.set_ylabel("input S")
+    ax_u.set_ylabel("activity u")
+    ax_u.legend(loc="center left", bbox_to_anchor=(1.01, 0.5), fontsize=7, frameon=False)
+    _mark_decisions(rep, (ax_s, ax_u))
+    ax_u.set_xlabel("time (s)")
+    ax_s.set_title(title or f"{rep.timeline.name}: {layer}")
+    fig.tight_layout()
+    path = Path(path)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+    return path
+
+
+def _mark_decisions(rep: Replay, axes) -> None:
+    for t, kind, action in rep.cognition.history:
+        for ax in axes:
+            ax.axvline(t, color="tab:red" if kind == "decide" else "0.6", lw=0.8, ls=":")
+        if kind == "decide":
+            axes[0].annotate(action, (t, 1.0), xycoords=("data", "axes fraction"), fontsize=6, rotation=90,
+                             va="top", ha="right", color="tab:red")
+
+
+def write_figures(rep: Replay, out: str | Path) -> list[Path]:
+    """All figures of a replay into ``out``: ASL, AEL, IL, AML (input + activity), CSGL, OML."""
+    out = Path(out)
+    name = rep.timeline.name
+    paths = [
+        plot_layer(rep, "ASL", out / "asl.png", f"{name}: action simulation layer (ASL) - input and activity"),
+        plot_layer(rep, "AEL", out / "ael.png", f"{name}: action execution layer (AEL) - input and activity"),
+        plot_csgl(rep, out / "csgl.png", f"{name}: CSGL past / present / future"),
+        plot_layer(rep, "IL", out / "il.png", f"{name}: intention layer (IL)"),
+        plot_layer(rep, "AML", out / "aml.png", f"{name}: action monitoring layer (AML)"),
+        plot_layer(rep, "OML", out / "oml.png", f"{name}: object memory layer (OML)"),
+    ]
+    return paths

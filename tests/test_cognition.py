@@ -1,0 +1,243 @@
+"""The layered field architecture reproduces the seed's decisions (Fig. 3-5) from percept timelines.
+
+Perception here is the ORACLE (ground truth turned into percepts), so these
+tests isolate cognition. Every assertion is about field dynamics: peaks in
+layers, the AEL winner, and utterances emitted on peak rises.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from assistbot import task
+from assistbot.cognition import Cognition, CognitionConfig, load_timeline, oracle_percept, timeline_from_dict
+from assistbot.cognition.replay import replay
+from assistbot.errors import UserError
+
+TIMELINES = Path(__file__).resolve().parents[1] / "scenarios" / "timelines"
+
+
+@pytest.fixture(scope="module")
+def fig3():
+    return replay(load_timeline(TIMELINES / "fig3.yaml"))
+
+
+@pytest.fixture(scope="module")
+def fig4():
+    return replay(load_timeline(TIMELINES / "fig4.yaml"))
+
+
+@pytest.fixture(scope="module")
+def fig5():
+    return replay(load_timeline(TIMELINES / "fig5.yaml"))
+
+
+def _window(rep, layer, t0, t1, which="u"):
+    t = rep.recorder.times
+    sel = (t >= t0) & (t <= t1)
+    return {k: v[sel] for k, v in rep.recorder.item_traces(layer, which).items()}
+
+
+# -- Fig. 3 -------------------------------------------------------------------------------------
+
+def test_fig3_side_grip_on_closed_bottle_ends_in_communicate_error(fig3):
+    p = fig3.peaks_at(1.9)
+    assert p["ASL"][:1] == ["Reach-grasp-SG-closed-bottle"]
+    assert p["IL"][:1] == ["Remove-stopper"]
+    assert p["AML"][:1] == ["Cannot-remove-stopper"]
+    assert fig3.chosen[0] == "Communicate-Error"
+    t_dec = fig3.decided_at("Communicate-Error")
+    assert t_dec < 3.0
+    # other AEL pools received input first, then all faded below threshold while Communicate-Error won
+    s = _window(fig3, "AEL", 0.5, t_dec, "s")
+    assert max(s["Grasp-hold-bottle-to-remove-cup"]) > 1.0
+    u = _window(fig3, "AEL", t_dec + 0.3, 3.9)
+    assert min(u["Communicate-Error"]) > 0
+    assert all(max(v) < 0 for k, v in u.items() if k != "Communicate-Error")
+    # the error message spoken is the AML winner's
+    said = [s for s in fig3.said if s.layer == "AEL" and s.item == "Communicate-Error"]
+    assert len(said) == 1 and said[0].tag == "error:cannot_remove_stopper"
+
+
+def test_fig3_above_grip_makes_the_robot_hold_the_bottle_and_say_so(fig3):
+    assert fig3.chosen[1] == "Grasp-hold-bottle-to-remove-cup"
+    assert 5.0 < fig3.decided_at("Grasp-hold-bottle-to-remove-cup") < 7.5
+    assert "Reach-grasp-AG-closed-bottle-to-hand-over" in fig3.peaks_at(6.0)["ASL"]
+    assert "Remove-stopper" in fig3.peaks_at(6.0)["IL"]
+    assert fig3.peaks_at(6.0)["AML"] == []
+    said = [s for s in fig3.said if s.item == "Grasp-hold-bottle-to-remove-cup"]
+    assert len(said) == 1 and said[0].tag == "invite:remove_stopper"
+    d = [d for d in fig3.decisions if d.new and d.action == "Grasp-hold-bottle-to-remove-cup"][0]
+    assert d.target == "bottle"
+
+
+def test_fig3_open_hand_request_with_open_bottle_in_rws_selects_A6_over_A7(fig3):
+    assert fig3.chosen == ["Communicate-Error", "Grasp-hold-bottle-to-remove-cup", "Reach-and-turn-glass"]
+    t6 = fig3.decided_at("Reach-and-turn-glass")
+    assert t6 > 10.0
+    assert "Request-object-with-open-hand" in fig3.peaks_at(t6)["ASL"] or "Get-glass" in fig3.peaks_at(t6)["IL"]
+    assert "bottle_open_RWS" in fig3.peaks_at(t6)["OML"]
+    u = _window(fig3, "AEL", t6, t6 + 2)
+    assert min(u["Reach-and-turn-glass"]) > 0 and max(u["Reach-turn-and-hand-over-glass"]) < 0
+
+
+def test_fig3_same_request_without_open_bottle_in_rws_selects_A7():
+    rep = replay(load_timeline(TIMELINES / "fig3_request_no_open_bottle.yaml"))
+    assert rep.chosen == ["Reach-turn-and-hand-over-glass"]
+    assert rep.peaks_at(2.0)["IL"][:1] == ["Get-glass"]
+
+
+# -- Fig. 4 -------------------------------------------------------------------------------------
+
+def test_fig4_csgl_and_fill_then_hand_over(fig4):
+    p = fig4.peaks_at(1.5)
+    assert set(p["CSGL_past"]) == {"Open-bottle", "Turn-glass"}
+    assert p["CSGL_present"] == ["Fill-glass"]
+    assert p["CSGL_future"] == ["Hand-over-full-glass"]
+    assert fig4.chosen == ["Reach-grasp-open-bottle-fill-glass", "Reach-full-glass-to-hand-over"]
+    assert fig4.decided_at("Reach-full-glass-to-hand-over") > 6.0  # only after the fill was reported finished
+    p = fig4.peaks_at(8.0)
+    assert set(p["CSGL_past"]) == {"Open-bottle", "Turn-glass", "Fill-glass"}
+    assert p["CSGL_present"] == ["Hand-over-full-glass"]
+    assert p["CSGL_future"] == []
+
+
+# -- Fig. 5 -------------------------------------------------------------------------------------
+
+def test_fig5_passive_user_robot_takes_the_initiative(fig5):
+    assert fig5.peaks_at(0.8)["CSGL_past"] == ["Turn-glass"]
+    assert fig5.peaks_at(0.8)["CSGL_present"] == ["Open-bottle"]
+    assert fig5.chosen == ["Grasp-hold-bottle-to-remove-cup", "Request-glass", "Reach-grasp-open-bottle-fill-glass",
+                           "Reach-full-glass-to-hand-over"]
+    assert all(d.peaks["ASL"] == [] and d.peaks["IL"] == [] for d in fig5.decisions)  # no gesture was simulated
+    # after the stopper: Request-glass and Hand-over-bottle both receive input; Request-glass wins
+    t_req = fig5.decided_at("Request-glass")
+    s = _window(fig5, "AEL", 6.0, t_req, "s")
+    assert max(s["Hand-over-bottle"]) > 1.0
+    assert max(s["Request-glass"]) > max(s["Hand-over-bottle"])
+    assert fig5.peaks_at(t_req)["CSGL_present"] == ["Fill-glass"]
+    p = fig5.peaks_at(17.0)
+    assert "Fill-glass" in p["CSGL_past"] and p["CSGL_present"] == ["Hand-over-full-glass"]
+
+
+# -- timing: the seed's point against a state machine ---------------------------------------------
+
+SCENE = {"t": 0.0, "bottle": {"zone": "HWS", "state": "closed"}, "glass": {"zone": "RWS", "state": "inverted"},
+         "hand": {"posture": "reach", "directed_at": "bottle"}}
+
+
+def _tl(events, duration=4.0):
+    return timeline_from_dict({"name": "t", "duration": duration, "events": events})
+
+
+def test_a_grasp_seen_too_briefly_leaves_il_and_ael_below_threshold():
+    brief = _tl([SCENE, {"t": 1.0, "hand": {"posture": "grasp_sg", "object_in_hand": "bottle", "held_out": True}},
+                 {"t": 1.1, "hand": {"posture": "reach", "object_in_hand": None, "held_out": False}}])
+    rep = replay(brief)
+    assert rep.chosen == []
+    assert all(d.peaks["IL"] == [] and d.peaks["AEL"] == [] for d in rep.decisions)
+    # the same grasp held: the architecture does decide
+    held = _tl([SCENE, {"t": 1.0, "hand": {"posture": "grasp_sg", "object_in_hand": "bottle", "held_out": True}}])
+    assert replay(held, record=False).chosen == ["Communicate-Error"]
+
+
+def test_one_source_missing_leaves_il_and_ael_below_threshold():
+    # the grasp is seen, but the bottle never is: no object context for the action chain
+    events = [{**SCENE, "bottle": {"zone": "HWS", "state": "closed", "seen": False}},
+              {"t": 1.0, "hand": {"posture": "grasp_sg", "object_in_hand": "bottle", "held_out": True}}]
+    rep = replay(_tl(events))
+    assert rep.chosen == []
+    assert all(d.peaks["IL"] == [] and d.peaks["AEL"] == [] for d in rep.decisions)
+
+
+def _rises(trace: np.ndarray, on: float = 0.5, off: float = 0.0) -> int:
+    n, up = 0, False
+    for v in trace:
+        if not up and v > on:
+            n, up = n + 1, True
+        elif up and v < off:
+            up = False
+    return n
+
+
+def test_decisions_do_not_flip_while_inputs_are_steady():
+    steady = _tl([SCENE, {"t": 1.0, "hand": {"posture": "grasp_sg", "object_in_hand": "bottle", "held_out": True}}], duration=12.0)
+    rep = replay(steady)
+    assert rep.chosen == ["Communicate-Error"]
+    for item, trace in rep.recorder.item_traces("AEL", "u").items():
+        assert _rises(trace) == (1 if item == "Communicate-Error" else 0), item
+    for layer in ("ASL", "IL", "AML"):
+        for item, trace in rep.recorder.item_traces(layer, "u").items():
+            assert _rises(trace) <= 1, (layer, item)
+
+
+def test_passive_decision_is_steady_too(fig4):
+    u = _window(fig4, "AEL", 0.0, 5.9)
+    assert _rises(u["Reach-grasp-open-bottle-fill-glass"]) == 1
+    assert all(_rises(v) == 0 for k, v in u.items() if k != "Reach-grasp-open-bottle-fill-glass")
+
+
+# -- utterances ---------------------------------------------------------------------------------------
+
+def test_utterances_once_per_peak_rise(fig3, fig5):
+    for rep in (fig3, fig5):
+        traces = {L: rep.recorder.item_traces(L, "u") for L in ("ASL", "IL", "AML")}
+        for L, tr in traces.items():
+            for item, trace in tr.items():
+                said = [s for s in rep.said if s.layer == L and s.item == item]
+                assert len(said) == _rises(trace), (rep.timeline.name, L, item)
+        # AEL speaks exactly once per decision
+        assert [s.item for s in rep.said if s.layer == "AEL"] == rep.chosen
+    for s in fig3.said:
+        assert s.text and s.tag == task.UTTERANCES[s.layer][s.item].tag or s.item == "Communicate-Error"
+
+
+# -- config, oracle -------------------------------------------------------------------------------------
+
+def test_config_paths_and_errors():
+    cfg = CognitionConfig()
+    assert "fields.AEL.h" in cfg.paths() and "couplings.OL->ASL.k" in cfg.paths() and "k" in cfg.paths()
+    cfg.set("cognition.k", 0.9)
+    assert cfg.get("k") == 0.9
+    cfg.set("couplings.IL->AEL.table.Request-glass.Get-glass", 0.5)
+    assert cfg.get("couplings.IL->AEL.table.Request-glass.Get-glass") == 0.5
+    with pytest.raises(UserError, match="unknown key 'AELX'"):
+        cfg.set("fields.AELX.h", -3)
+    with pytest.raises(UserError, match="'Nope'"):
+        cfg.set("couplings.IL->AEL.table.Nope.Get-glass", 1.0)
+    cog = Cognition(overrides={"fields.AEL.h": -4.0})
+    assert cog.net.get("fields.AEL.h") == -4.0
+    assert "Get-glass" in cog.net.describe_table("IL->AEL")
+
+
+def test_global_k_weakens_every_coupling():
+    # k scales all inter-field input: weaker coupling, no decision in the passive Fig. 4 situation
+    rep = replay(load_timeline(TIMELINES / "fig4.yaml"), overrides={"k": 0.5}, record=False)
+    assert rep.chosen == []
+
+
+def test_oracle_is_labelled_and_validates():
+    from assistbot.cognition import ORACLE_LABEL
+
+    assert "oracle" in ORACLE_LABEL.lower()
+    p = oracle_percept(1.0, {"bottle": {"zone": "RWS", "state": "open"}, "hand": {"posture": "pointing", "pointed_at": "glass"}})
+    assert p.objects["bottle"].state == "open" and p.hand.pointed_at == "glass"
+    with pytest.raises(ValueError):
+        oracle_percept(1.0, {"glass": {"zone": "RWS", "state": "closed"}})
+
+
+def test_release_resets_the_decision_and_the_next_cycle_begins():
+    cog = Cognition()
+    truth = {"bottle": {"zone": "RWS", "state": "open"}, "glass": {"zone": "RWS", "state": "empty"}, "hand": {"posture": "none"}}
+    t = 0.0
+    while cog.decision is None and t < 5:
+        t += 0.1
+        cog.update(oracle_percept(t, truth))
+    assert cog.decision == "Reach-grasp-open-bottle-fill-glass"
+    t += 0.1
+    d = cog.update(oracle_percept(t, {**truth, "robot": {"status": "failed", "action": "Reach-grasp-open-bottle-fill-glass"}}))
+    assert d.released == "Reach-grasp-open-bottle-fill-glass" and cog.decision is None
+    assert cog.net.peaks("AEL", 0.5) == [] or cog.net.t > 0
