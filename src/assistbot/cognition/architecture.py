@@ -80,6 +80,12 @@ class Cognition:
         self.net = Network.from_dict(self.config.network_dict(), backend=self.backend, seed=self.seed)
         self.layers = LAYERS
         self._thr_idx = {name: self.net.field(name).item_indices for name in LAYERS}
+        # flat indices of the spoken pools' centres in the network's state vector (fields are concatenated in order)
+        offsets = np.cumsum([0] + [self.net.field(f).size for f in self.net.field_names])
+        start = dict(zip(self.net.field_names, offsets[:-1]))
+        self._spoken_idx = np.concatenate([start[L] + self._thr_idx[L] for L in SPOKEN_LAYERS])
+        self._spoken_names = [(L, item) for L in SPOKEN_LAYERS for item in LAYERS[L]]
+        assert np.shares_memory(self.net.u("AEL"), self.net.state_u)
         self.reset()
 
     def set(self, path: str, value: Any) -> None:
@@ -98,8 +104,9 @@ class Cognition:
         self.decision: str | None = None       # the committed AEL winner
         self.decision_t: float | None = None
         self.error: str | None = None
-        self._up: dict[str, np.ndarray] = {L: np.zeros(len(LAYERS[L]), bool) for L in SPOKEN_LAYERS}
-        self._above_since: dict[str, np.ndarray] = {L: np.full(len(LAYERS[L]), np.nan) for L in SPOKEN_LAYERS}
+        n_spoken = len(self._spoken_names)
+        self._upv = np.zeros(n_spoken, bool)       # pool counted as risen (spoken) and not yet gone
+        self._since = np.full(n_spoken, -1.0)      # time since which the pool is above threshold, -1 if not
         self._release_until = -1.0
         self._habituation: dict[str, float] = {}  # action -> time released
         self._pending: list[Said] = []
@@ -138,6 +145,8 @@ class Cognition:
                     else:
                         amp = s["oml_against"] * o.confidence
                     net.set_stimulus("OML", item, amp)
+        if self._habituation:
+            self._apply_release_inputs()
         r = percept.robot
         if r.status in ("finished", "failed") and self.decision is not None and (r.action is None or r.action == self.decision):
             self.release(r.status)
@@ -159,6 +168,7 @@ class Cognition:
     def _apply_release_inputs(self) -> None:
         rel = self.config.data["release"]
         t = self.net.t
+        self._habituation = {a: t0 for a, t0 in self._habituation.items() if t - t0 < 5 * float(rel["habituation_tau"])}
         releasing = t < self._release_until
         for a in task.AEL_ITEMS:
             amp = float(rel["inhibition"]) if releasing else 0.0
@@ -211,23 +221,21 @@ class Cognition:
         ro = self.config.data["readout"]
         thr, off, hold = float(ro["threshold"]), float(ro["off"]), float(ro["hold"])
         t = self.net.t
-        if self._habituation or self._release_until >= 0:
+        if self._release_until >= 0 and t >= self._release_until:
+            self._release_until = -1.0
             self._apply_release_inputs()
-            if t >= self._release_until:
-                self._release_until = -1.0
-            self._habituation = {a: t0 for a, t0 in self._habituation.items()
-                                 if t - t0 < 5 * float(self.config.data["release"]["habituation_tau"])}
-        for L in SPOKEN_LAYERS:
-            u = self.net.u(L)[self._thr_idx[L]]
-            since = self._above_since[L]
-            above = u > thr
-            since[above & np.isnan(since)] = t
-            since[~above] = np.nan
-            up = self._up[L]
-            rising = above & ~up & (t - np.nan_to_num(since, nan=t) >= hold - 1e-9)
-            up[u < off] = False
+        u = self.net.state_u[self._spoken_idx]
+        above = u > thr
+        since = self._since
+        since[above & (since < 0)] = t
+        since[~above] = -1.0
+        up = self._upv
+        up[u < off] = False
+        rising = above & ~up & (t - since >= hold - 1e-9)
+        if rising.any():
             for i in np.nonzero(rising)[0]:
-                if self._rose(L, LAYERS[L][i], t):
+                layer, item = self._spoken_names[i]
+                if self._rose(layer, item, t):
                     up[i] = True
 
     def _rose(self, layer: str, item: str, t: float) -> bool:
