@@ -1,0 +1,1 @@
+"""The scripted human partner: arm control, behaviours, profiles, reactions to the robot."""

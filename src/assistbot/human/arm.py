@@ -1,0 +1,240 @@
+"""The human's right arm: minimum-jerk hand motions solved by damped least-squares IK.
+
+Frames: targets are poses of the site ``human_r_grasp`` (the centre of a grip, in front of
+the palm) in world coordinates (metres; x from the human toward the robot, z up from the
+floor).  Orientations are rotation matrices whose columns are the hand's axes in the world:
+the hand's -z points along the fingers, +y out of the palm.
+
+Each control tick (`tick`, default 20 ms) the arm evaluates its current minimum-jerk
+segment, takes one or two IK steps on a 7-joint model of the arm alone (`ikmodel`) from
+the previously commanded joint angles, and writes those angles to the arm's position
+servos in the scene.  Joint speeds are bounded (a person with a motor impairment), so the
+servo targets never jump.
+
+The middle line: a target whose x lies beyond `HANDOVER_X_MAX` is clamped there and the
+attempt is logged in `clamped` (the hand never crosses the middle line beyond the hand-over
+zone).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import mujoco
+import numpy as np
+
+from assistbot.human.ikmodel import arm_model
+from assistbot.world import HAND_POSTURES, HUMAN_ARM_JOINTS, HUMAN_HAND_JOINTS
+
+#: the hand-over zone reaches this far across the middle line (world/table x, m)
+HANDOVER_X_MAX = 0.05
+#: lowest grasp-site height (world z, m): 2 cm above the table top
+MIN_Z = 0.77
+MAX_JOINT_SPEED = 1.2       # rad/s, any arm joint
+MIN_DURATION = 0.4          # s, shortest reach
+ANGULAR_SPEED = 1.0         # rad/s mean hand rotation speed of a reach
+
+
+def _rot(z_axis, y_axis) -> np.ndarray:
+    z = np.asarray(z_axis, float)
+    z = z / np.linalg.norm(z)
+    y = np.asarray(y_axis, float)
+    y = y - z * (y @ z)
+    y = y / np.linalg.norm(y)
+    return np.column_stack([np.cross(y, z), y, z])
+
+
+def rot_y(angle: float) -> np.ndarray:
+    c, s = np.cos(angle), np.sin(angle)
+    return np.array([[c, 0, s], [0, 1, 0], [-s, 0, c]])
+
+
+#: hand orientations (columns: hand x, y, z in the world)
+ORIENT = {
+    # fingers forward (+x), palm facing down: grasping from above
+    "ag": _rot([-1, 0, 0], [0, 0, -1]),
+    # fingers forward, palm facing the midline (+y), thumb up: a side grip / handshake
+    "sg": _rot([-1, 0, 0], [0, 1, 0]),
+    # open palm up, fingers toward the robot: a request
+    "request": _rot([-1, 0, 0], [0, 0, 1]),
+    # index toward the robot, palm down (like ag)
+    "point": _rot([-1, 0, 0], [0, 0, -1]),
+}
+
+
+SHOULDER_XY = np.array([-0.70, -0.21])
+
+
+def rot_z(angle: float) -> np.ndarray:
+    c, s = np.cos(angle), np.sin(angle)
+    return np.array([[c, -s, 0], [s, c, 0], [0, 0, 1]])
+
+
+def grip_orientation(kind: str, target) -> np.ndarray:
+    """ORIENT[kind] turned about the vertical so the fingers point along the shoulder->target bearing."""
+    d = np.asarray(target, float)[:2] - SHOULDER_XY
+    return rot_z(float(np.arctan2(d[1], d[0]))) @ ORIENT[kind]
+
+
+def _log_rot(R: np.ndarray) -> np.ndarray:
+    """Rotation vector of R (axis * angle)."""
+    c = np.clip((np.trace(R) - 1.0) / 2.0, -1.0, 1.0)
+    a = np.arccos(c)
+    w = np.array([R[2, 1] - R[1, 2], R[0, 2] - R[2, 0], R[1, 0] - R[0, 1]])
+    if a < 1e-6:
+        return 0.5 * w
+    if a > np.pi - 1e-4:
+        # near pi: axis from the symmetric part
+        k = np.argmax(np.diag(R))
+        v = R[:, k] + np.eye(3)[k]
+        return a * v / np.linalg.norm(v)
+    return a / (2.0 * np.sin(a)) * w
+
+
+def _exp_rot(w: np.ndarray) -> np.ndarray:
+    a = np.linalg.norm(w)
+    if a < 1e-9:
+        return np.eye(3)
+    k = w / a
+    K = np.array([[0, -k[2], k[1]], [k[2], 0, -k[0]], [-k[1], k[0], 0]])
+    return np.eye(3) + np.sin(a) * K + (1 - np.cos(a)) * K @ K
+
+
+def min_jerk(s: float) -> float:
+    """Minimum-jerk progress 10s^3 - 15s^4 + 6s^5 of a normalised time s in [0, 1]."""
+    s = min(max(s, 0.0), 1.0)
+    return s * s * s * (10.0 + s * (-15.0 + 6.0 * s))
+
+
+@dataclass
+class Segment:
+    t0: float
+    duration: float
+    p0: np.ndarray
+    p1: np.ndarray
+    R0: np.ndarray
+    dw: np.ndarray          # rotation vector from R0 to R1 (world frame)
+
+    def at(self, t: float) -> tuple[np.ndarray, np.ndarray]:
+        s = min_jerk((t - self.t0) / self.duration)
+        return self.p0 + s * (self.p1 - self.p0), _exp_rot(s * self.dw) @ self.R0
+
+    def done(self, t: float) -> bool:
+        return t >= self.t0 + self.duration
+
+
+class HumanArm:
+    """Drives the human's right arm and hand in a `World` (see module docstring).
+
+    speed: mean hand speed (m/s) of a reach; a reach of distance d lasts
+    max(MIN_DURATION, d / speed, rotation / ANGULAR_SPEED) seconds.
+    """
+
+    def __init__(self, world, speed: float = 0.2, dt: float = 0.02) -> None:
+        if speed <= 0:
+            raise ValueError(f"speed must be > 0 m/s, got {speed}")
+        self.world = world
+        self.speed = float(speed)
+        self.dt = float(dt)
+        self.m = arm_model()
+        self.d = mujoco.MjData(self.m)
+        wm = world.model
+        self._act = np.array([wm.actuator(j).id for j in HUMAN_ARM_JOINTS])
+        self._hand_act = np.array([wm.actuator(j).id for j in HUMAN_HAND_JOINTS])
+        self._wq = np.array([wm.jnt_qposadr[wm.joint(j).id] for j in HUMAN_ARM_JOINTS])
+        self._site = self.m.site("human_r_grasp").id
+        self._wsite = wm.site("human_r_grasp").id
+        self._lo = self.m.jnt_range[:, 0].copy()
+        self._hi = self.m.jnt_range[:, 1].copy()
+        self._jacp = np.zeros((3, self.m.nv))
+        self._jacr = np.zeros((3, self.m.nv))
+        self.clamped: list[tuple[float, tuple[float, float, float], tuple[float, float, float]]] = []
+        self.posture = "open"
+        self.reset()
+
+    # ------------------------------------------------------------------ state
+    def reset(self) -> None:
+        """Start from the arm's present joint angles (in the world) at rest."""
+        self.q = self.world.data.qpos[self._wq].copy()
+        self.q_rest = self.q.copy()
+        self.segment: Segment | None = None
+        p, R = self.fk(self.q)
+        self.p_goal, self.R_goal = p, R
+
+    def fk(self, q: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """Pose (position, rotation) of the grasp site for arm angles q."""
+        self.d.qpos[:] = q
+        mujoco.mj_kinematics(self.m, self.d)
+        return self.d.site_xpos[self._site].copy(), self.d.site_xmat[self._site].reshape(3, 3).copy()
+
+    def hand_pose(self) -> tuple[np.ndarray, np.ndarray]:
+        """The measured grasp-site pose in the scene."""
+        d, sid = self.world.data, self._wsite
+        return d.site_xpos[sid].copy(), d.site_xmat[sid].reshape(3, 3).copy()
+
+    # ------------------------------------------------------------------ commands
+    def clamp_target(self, p, t: float = 0.0) -> np.ndarray:
+        """Apply the body's limits to a hand target; log an attempt beyond the middle line."""
+        p = np.array(p, dtype=float)
+        q = p.copy()
+        if q[0] > HANDOVER_X_MAX:
+            q[0] = HANDOVER_X_MAX
+            self.clamped.append((float(t), tuple(p), tuple(q)))
+        q[2] = max(q[2], MIN_Z)
+        return q
+
+    def move_to(self, p, R=None, t: float = 0.0, duration: float | None = None, speed: float | None = None) -> float:
+        """Start a minimum-jerk motion of the grasp site to position p (and rotation R).
+
+        Starts from the present commanded pose (smooth re-targeting).  Returns the duration (s)."""
+        p1 = self.clamp_target(p, t)
+        p0, R0 = self.fk(self.q)
+        R1 = R0 if R is None else np.asarray(R, float)
+        dw = _log_rot(R1 @ R0.T)
+        if duration is None:
+            v = self.speed if speed is None else speed
+            duration = max(MIN_DURATION, float(np.linalg.norm(p1 - p0)) / v, float(np.linalg.norm(dw)) / ANGULAR_SPEED * self.speed / v)
+        self.segment = Segment(float(t), float(duration), p0, p1, R0, dw)
+        self.p_goal, self.R_goal = p1, R1
+        return float(duration)
+
+    def arrived(self, t: float, tol: float = 0.03) -> bool:
+        """The motion's time is up and the measured hand is within tol (m) of the goal."""
+        if self.segment is not None and not self.segment.done(t):
+            return False
+        return float(np.linalg.norm(self.hand_pose()[0] - self.p_goal)) < tol
+
+    def set_posture(self, posture: str) -> None:
+        if posture not in HAND_POSTURES:
+            raise ValueError(f"unknown hand posture {posture!r}; use one of {', '.join(HAND_POSTURES)}")
+        self.posture = posture
+        self.world.data.ctrl[self._hand_act] = HAND_POSTURES[posture]
+
+    # ------------------------------------------------------------------ control tick
+    def tick(self, t: float, iterations: int = 1) -> None:
+        """One control tick at time t: follow the segment with IK and command the servos."""
+        if self.segment is not None:
+            p_t, R_t = self.segment.at(t + self.dt)
+        else:
+            p_t, R_t = self.p_goal, self.R_goal
+        q = self.q
+        max_step = MAX_JOINT_SPEED * self.dt
+        m, d = self.m, self.d
+        for _ in range(iterations):
+            d.qpos[:] = q
+            mujoco.mj_kinematics(m, d)
+            mujoco.mj_comPos(m, d)
+            mujoco.mj_jacSite(m, d, self._jacp, self._jacr, self._site)
+            p, R = d.site_xpos[self._site], d.site_xmat[self._site].reshape(3, 3)
+            e = np.concatenate([p_t - p, 0.4 * _log_rot(R_t @ R.T)])
+            J = np.vstack([self._jacp, 0.4 * self._jacr])
+            # damped least squares, with a weak pull toward the rest posture in the null space
+            JJt = J @ J.T
+            JJt[np.diag_indices(6)] += 4e-4
+            sol = np.linalg.solve(JJt, np.column_stack([e, J]))
+            r = 0.02 * (self.q_rest - q)
+            dq = J.T @ sol[:, 0] + r - J.T @ (sol[:, 1:] @ r)
+            q = np.clip(q + dq, self._lo, self._hi)
+        step = np.clip(q - self.q, -max_step, max_step)
+        self.q = np.clip(self.q + step, self._lo, self._hi)
+        self.world.data.ctrl[self._act] = self.q

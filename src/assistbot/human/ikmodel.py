@@ -1,0 +1,47 @@
+"""A small MuJoCo model of the human's right arm alone, for inverse kinematics.
+
+Built from assets/mjcf/human.xml (the same file the scene includes) with the fingers, the
+welds, actuators and sensors removed: 7 joints, a handful of bodies, so that one
+kinematics pass and one Jacobian cost a few microseconds instead of the whole scene's
+(the scene has ~290 degrees of freedom, mostly liquid particles).  The human body sits at
+an absolute position in the world, so site positions here equal world positions.
+"""
+
+from __future__ import annotations
+
+import xml.etree.ElementTree as ET
+from functools import lru_cache
+from pathlib import Path
+
+import mujoco
+
+from assistbot.world import layout
+
+HUMAN_XML: Path = layout.ASSETS / "human.xml"
+
+
+@lru_cache(maxsize=1)
+def arm_model_xml() -> str:
+    root = ET.fromstring(HUMAN_XML.read_text())
+    for tag in ("equality", "actuator", "sensor", "contact"):
+        for e in root.findall(tag):
+            root.remove(e)
+    hand = root.find(".//body[@name='human_r_hand']")
+    if hand is None:
+        raise RuntimeError(f"{HUMAN_XML}: no body human_r_hand")
+    for b in hand.findall("body"):
+        hand.remove(b)
+    for e in root.iter():
+        e.attrib.pop("material", None)
+    body = root.find(".//body[@name='human_body']")
+    for g in list(body):
+        if g.tag == "geom" or (g.tag == "site" and g.get("name") not in ("human_mouth", "human_eyes")):
+            body.remove(g)
+    root.set("model", "human_arm_ik")
+    root.insert(0, ET.fromstring('<compiler angle="radian" autolimits="true"/>'))
+    return ET.tostring(root, encoding="unicode")
+
+
+def arm_model() -> mujoco.MjModel:
+    """A fresh MjModel of the arm (joints in HUMAN_ARM_JOINTS order)."""
+    return mujoco.MjModel.from_xml_string(arm_model_xml())

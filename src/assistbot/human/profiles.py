@@ -1,0 +1,36 @@
+"""User profiles: named parameter sets of the simulated partner (seed paper, section IV-D)."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, replace
+
+
+@dataclass(frozen=True)
+class Profile:
+    """Parameters of one kind of partner.
+
+    initiative      acts on its own toward drinking (active) or only answers requests (passive)
+    reaction_delay  s between perceiving a robot act (speech tag or gesture) and responding
+    speed           mean hand speed of a reach (m/s); peak speed of a minimum-jerk reach is 1.875x
+    grip            preferred grip for hand-overs and hold-outs: "ag" (above) or "sg" (side)
+    wrong_grip      chance (0..1) that the default policy first grasps with the other grip
+    hesitation      s of pause before each motion (a person who hesitates)
+    """
+
+    name: str
+    initiative: bool
+    reaction_delay: float = 0.8
+    speed: float = 0.20
+    grip: str = "ag"
+    wrong_grip: float = 0.3
+    hesitation: float = 0.0
+
+    def with_(self, **changes) -> "Profile":
+        return replace(self, **changes)
+
+
+PROFILES: dict[str, Profile] = {
+    "active": Profile("active", initiative=True, reaction_delay=0.6, speed=0.20, grip="ag", wrong_grip=0.3),
+    "passive": Profile("passive", initiative=False, reaction_delay=1.0, speed=0.18, grip="ag", wrong_grip=0.0),
+    "slow": Profile("slow", initiative=True, reaction_delay=1.5, speed=0.08, grip="ag", wrong_grip=0.3, hesitation=0.8),
+}
