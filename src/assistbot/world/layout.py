@@ -1,0 +1,55 @@
+"""Numbers of the scene that Python needs: table, zones, object sizes, default places.
+
+All positions are in table coordinates (see `assistbot.world`): metres, origin at the
+centre of the table top, x from the human toward the robot, y to the human's left, z up.
+The world frame is the same with z measured from the floor: world z = table z + TABLE_Z.
+They must agree with assets/mjcf/*.xml (tests check the important ones).
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+ASSETS = Path(__file__).resolve().parents[3] / "assets" / "mjcf"
+SCENE_XML = ASSETS / "scene.xml"
+
+TABLE_Z = 0.75                 # height of the table top above the floor (m)
+TABLE_HALF_X = 0.40            # the table spans x in [-0.40, 0.40]
+TABLE_HALF_Y = 0.55            # and y in [-0.55, 0.55]
+EDGE_MARGIN = 0.02             # an object must stand this far inside the table edge
+MIDLINE_MARGIN = 0.01          # ... and this far from the middle line, entirely in its half
+
+ZONES = ("HWS", "RWS")         # human's workspace x < 0, robot's workspace x > 0
+BOTTLE_STATES = ("closed", "open")
+GLASS_STATES = ("inverted", "empty", "full")
+
+BOTTLE_RADIUS = 0.035
+BOTTLE_INNER_RADIUS = 0.029
+BOTTLE_BASE_TOP = 0.006        # inner floor height in the bottle frame
+BOTTLE_MOUTH_Z = 0.194         # top of the neck (the stopper body's origin when closed)
+GLASS_RADIUS = 0.040
+GLASS_INNER_RADIUS = 0.035
+GLASS_BASE_TOP = 0.008
+GLASS_HEIGHT = 0.100
+STOPPER_RADIUS = 0.019
+STOPPER_PLUG_DEPTH = 0.020     # the plug reaches this far below the stopper's origin
+
+PARTICLE_RADIUS = 0.006
+N_PARTICLES = 40
+
+#: default places (table x, y) per object and zone
+DEFAULT_POSITIONS = {
+    ("bottle", "HWS"): (-0.22, -0.12),
+    ("glass", "HWS"): (-0.22, 0.12),
+    ("bottle", "RWS"): (0.20, 0.12),
+    ("glass", "RWS"): (0.20, -0.12),
+}
+#: where a removed stopper stands (in the HWS, at the human's left hand)
+STOPPER_PARK = (-0.30, 0.36)
+
+OBJECT_RADIUS = {"bottle": BOTTLE_RADIUS, "glass": GLASS_RADIUS, "stopper": STOPPER_RADIUS}
+
+
+def zone_of(x: float) -> str:
+    """The workspace a table x coordinate lies in."""
+    return "HWS" if x < 0.0 else "RWS"

@@ -1,0 +1,325 @@
+"""Building the scene for an arrangement, stepping it, and the physical rules that live in Python.
+
+Two pieces of the scene's physics need a line of Python each step, and both are decided by
+measured quantities, never by who is doing what:
+
+* the stopper's friction fit: the weld ``stopper_fit`` is deactivated when its measured
+  pull-out force (the weld's constraint force along the bottle axis, low-pass filtered over
+  ~20 ms) exceeds STOPPER_RELEASE_FORCE.  A bottle standing free is lifted by a pull long
+  before that (it weighs ~3.4 N); held down by the robot's gripper, the pull grows until the
+  fit gives.
+* the human's grip: an equality weld that `World.human_grasp` turns on only when the hand's
+  grasp site is at the object and the hand posture is closed, and that `step` turns off as
+  soon as the hand opens.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import mujoco
+import numpy as np
+
+from assistbot.errors import UserError
+from assistbot.world import layout
+from assistbot.world.arrangement import Arrangement
+
+STOPPER_RELEASE_FORCE = 12.0   # N, pull-out force of the stopper's friction fit
+STOPPER_FORCE_TAU = 0.02       # s, low-pass time constant of the measured pull
+GRASP_REACH = 0.03             # m, how far outside an object's surface the grasp site may be
+MOUTH_RADIUS = 0.04            # m, a particle this close to the mouth site is drunk
+
+ROBOT_ARM_JOINTS = tuple(f"robot_j{i}" for i in range(1, 8))
+ROBOT_ARM_ACTUATORS = ROBOT_ARM_JOINTS
+ROBOT_FINGER_ACTUATORS = ("robot_finger1", "robot_finger2", "robot_finger3")
+ROBOT_HEAD_JOINTS = ("robot_head_pan", "robot_head_tilt")
+HUMAN_ARM_JOINTS = (
+    "human_r_shoulder_flex", "human_r_shoulder_abd", "human_r_shoulder_rot",
+    "human_r_elbow", "human_r_forearm_rot", "human_r_wrist_flex", "human_r_wrist_dev",
+)
+HUMAN_HAND_JOINTS = (
+    "human_r_index_prox", "human_r_index_dist", "human_r_fingers_prox",
+    "human_r_fingers_dist", "human_r_thumb_opp", "human_r_thumb_flex",
+)
+CAMERAS = ("scene_cam", "top_cam", "head_cam_left", "head_cam_right")
+OBJECTS = ("bottle", "glass", "stopper")
+
+#: Finger targets (rad) of the human's hand postures, in HUMAN_HAND_JOINTS order.
+HAND_POSTURES: dict[str, tuple[float, ...]] = {
+    "open": (0.0, 0.0, 0.0, 0.0, 0.0, 0.0),
+    "request": (0.05, 0.05, 0.05, 0.05, -0.2, 0.0),   # open empty palm held out
+    "point": (0.0, 0.0, 1.5, 1.5, 0.8, 0.8),
+    "ag": (0.9, 0.7, 0.9, 0.7, 1.0, 0.4),              # above grip (from the top)
+    "sg": (1.2, 0.9, 1.2, 0.9, 0.9, 0.3),              # side grip
+}
+_CLOSED_MIN = {"human_r_index_prox": 0.6, "human_r_fingers_prox": 0.6, "human_r_thumb_opp": 0.5}
+
+#: Robot finger targets: open, and "closed" (beyond any object: the servos then squeeze).
+GRIPPER_OPEN = 0.0
+GRIPPER_CLOSED = 1.6
+
+#: Home posture: joint -> angle (also the scene's `home` keyframe).
+HOME = {"robot_head_tilt": 0.75, "human_r_shoulder_flex": 0.35, "human_r_elbow": 1.45,
+        "human_r_forearm_rot": 1.2}
+
+
+def build_world(arrangement: Arrangement, seed: int = 0) -> "World":
+    """Load the scene and place bottle, stopper, glass and liquid as `arrangement` says.
+
+    The seed only jitters the liquid's starting layout (deterministically)."""
+    arrangement.validate()
+    spec = mujoco.MjSpec.from_file(str(layout.SCENE_XML))
+    model = spec.compile()
+    return World(model, arrangement, seed)
+
+
+def _quat_x180() -> np.ndarray:
+    return np.array([0.0, 1.0, 0.0, 0.0])
+
+
+class World:
+    """The MuJoCo model and data of one scene, with named lookups and ground truth.
+
+    `model`/`data` are plain mujoco.MjModel/MjData (mink works on them directly).  Drive the
+    robot and the human through `data.ctrl` (see `actuator`, `set_ctrl`) and advance with
+    `step`, which also runs the stopper fit and the human's grip.
+    """
+
+    def __init__(self, model: mujoco.MjModel, arrangement: Arrangement, seed: int = 0) -> None:
+        self.model = model
+        self.data = mujoco.MjData(model)
+        self.arrangement = arrangement
+        self.seed = int(seed)
+        m = model
+        self.body_id = {n: m.body(n).id for n in ("bottle", "glass", "stopper", "human_r_hand", "robot_gripper")}
+        self.eq_stopper = m.equality("stopper_fit").id
+        self.eq_hold = {o: m.equality(f"human_hold_{o}").id for o in OBJECTS}
+        self.site_id = {n: m.site(n).id for n in ("human_r_grasp", "human_mouth", "robot_tcp", "bottle_mouth", "stopper_grasp")}
+        self.particle_bodies = np.array([i for i in range(m.nbody) if m.body(i).name.startswith("particle")])
+        self.particle_geoms = np.array([m.body_geomadr[b] for b in self.particle_bodies])
+        self.particle_qadr = np.array([m.jnt_qposadr[m.body_jntadr[b]] for b in self.particle_bodies])
+        self.particle_vadr = np.array([m.jnt_dofadr[m.body_jntadr[b]] for b in self.particle_bodies])
+        # geom -> object (0 bottle, 1 glass, 2 stopper, -1 other); geom -> gripper part (1..3 fingers, 4 palm, 0 none)
+        gb = m.geom_bodyid
+        self.geom_object = np.full(m.ngeom, -1)
+        for k, o in enumerate(OBJECTS):
+            self.geom_object[gb == self.body_id[o]] = k
+        self.geom_gripper = np.zeros(m.ngeom, dtype=int)
+        for i in range(m.nbody):
+            name = m.body(i).name
+            for f in (1, 2, 3):
+                if name.startswith(f"robot_f{f}_"):
+                    self.geom_gripper[gb == i] = f
+        self.geom_gripper[gb == self.body_id["robot_gripper"]] = 4
+        self._hand_qadr = np.array([m.jnt_qposadr[m.joint(j).id] for j in _CLOSED_MIN])
+        self._hand_min = np.array(list(_CLOSED_MIN.values()))
+        self._eq_rows_cache: tuple[int, np.ndarray] | None = None
+        self.reset()
+
+    # ---------------------------------------------------------------- setup
+    def reset(self) -> None:
+        """Put everything at its arrangement's starting pose (time 0, home posture)."""
+        m, d = self.model, self.data
+        mujoco.mj_resetDataKeyframe(m, d, m.key("home").id)  # robot and human at HOME, servos holding it
+        d.eq_active[:] = m.eq_active0
+        for o in OBJECTS:
+            d.eq_active[self.eq_hold[o]] = 0
+        arr = self.arrangement
+        z = layout.TABLE_Z
+        bx, by = arr.position("bottle")
+        self._set_free("bottle", (bx, by, z), (1, 0, 0, 0))
+        if arr.bottle.state == "closed":
+            self._set_free("stopper", (bx, by, z + layout.BOTTLE_MOUTH_Z), (1, 0, 0, 0))
+            d.eq_active[self.eq_stopper] = 1
+        else:
+            sx, sy = layout.STOPPER_PARK
+            self._set_free("stopper", (sx, sy, z + layout.STOPPER_PLUG_DEPTH), (1, 0, 0, 0))
+            d.eq_active[self.eq_stopper] = 0
+        gx, gy = arr.position("glass")
+        if arr.glass.state == "inverted":
+            self._set_free("glass", (gx, gy, z + layout.GLASS_HEIGHT), _quat_x180())
+        else:
+            self._set_free("glass", (gx, gy, z), (1, 0, 0, 0))
+        # liquid: one layer on the inner floor of its container (particles do not touch each other)
+        rng = np.random.default_rng(self.seed)
+        n = len(self.particle_bodies)
+        if arr.glass.state == "full":
+            cx, cy, floor, rin = gx, gy, z + layout.GLASS_BASE_TOP, layout.GLASS_INNER_RADIUS
+        else:
+            cx, cy, floor, rin = bx, by, z + layout.BOTTLE_BASE_TOP, layout.BOTTLE_INNER_RADIUS
+        k = np.arange(n) + 0.5
+        rr = (rin - layout.PARTICLE_RADIUS - 0.002) * np.sqrt(k / n)
+        th = k * np.pi * (3 - np.sqrt(5)) + rng.uniform(0, 2 * np.pi)
+        for i, qa in enumerate(self.particle_qadr):
+            d.qpos[qa:qa + 3] = (cx + rr[i] * np.cos(th[i]), cy + rr[i] * np.sin(th[i]), floor + layout.PARTICLE_RADIUS - 0.0002)
+            d.qpos[qa + 3:qa + 7] = (1, 0, 0, 0)
+        self.drunk = np.zeros(n, dtype=bool)
+        m.geom_contype[self.particle_geoms] = 2
+        m.geom_conaffinity[self.particle_geoms] = 0
+        m.body_gravcomp[self.particle_bodies] = 0.0
+        self._stopper_pull = 0.0
+        mujoco.mj_forward(m, d)
+
+    def _set_free(self, body: str, pos, quat) -> None:
+        m = self.model
+        qa = m.jnt_qposadr[m.body_jntadr[self.body_id[body]]]
+        self.data.qpos[qa:qa + 3] = pos
+        self.data.qpos[qa + 3:qa + 7] = quat
+
+    # ---------------------------------------------------------------- lookups
+    @property
+    def time(self) -> float:
+        return float(self.data.time)
+
+    def actuator(self, name: str) -> int:
+        return self.model.actuator(name).id
+
+    def set_ctrl(self, targets: dict[str, float]) -> None:
+        """Set position-servo targets by actuator name (radians)."""
+        for name, value in targets.items():
+            self.data.ctrl[self.model.actuator(name).id] = value
+
+    def qpos(self, joint: str) -> float:
+        return float(self.data.qpos[self.model.jnt_qposadr[self.model.joint(joint).id]])
+
+    def site_pos(self, site: str) -> np.ndarray:
+        return self.data.site(site).xpos.copy()
+
+    def set_hand_posture(self, posture: str) -> None:
+        """Command one of HAND_POSTURES to the human's finger servos."""
+        if posture not in HAND_POSTURES:
+            raise UserError("human", "posture", f"unknown hand posture {posture!r}; use one of {', '.join(HAND_POSTURES)}")
+        self.set_ctrl(dict(zip(HUMAN_HAND_JOINTS, HAND_POSTURES[posture])))
+
+    def set_gripper(self, closure: float) -> None:
+        """Command the robot's three finger servos (0 open .. GRIPPER_CLOSED squeeze)."""
+        self.set_ctrl({a: closure for a in ROBOT_FINGER_ACTUATORS})
+
+    def warnings(self) -> dict[str, int]:
+        """MuJoCo warnings raised so far (name -> count), empty when none."""
+        return {mujoco.mjtWarning(i).name: int(w.number) for i, w in enumerate(self.data.warning) if w.number}
+
+    # ---------------------------------------------------------------- stepping
+    def step(self, n: int = 1) -> None:
+        """Advance n physics steps (model.opt.timestep each), with the stopper fit and the human grip."""
+        m, d = self.model, self.data
+        alpha = m.opt.timestep / (STOPPER_FORCE_TAU + m.opt.timestep)
+        for _ in range(n):
+            mujoco.mj_step(m, d)
+            if d.eq_active[self.eq_stopper]:
+                self._stopper_pull += alpha * (self.stopper_pull_force() - self._stopper_pull)
+                if self._stopper_pull > STOPPER_RELEASE_FORCE:
+                    d.eq_active[self.eq_stopper] = 0
+            if d.eq_active[[self.eq_hold[o] for o in OBJECTS]].any() and not self.hand_closed():
+                self.human_release()
+        self._drink()
+
+    def stopper_pull_force(self) -> float:
+        """The stopper fit's constraint force along the bottle's axis, pulling the stopper out (N)."""
+        d = self.data
+        rows = np.flatnonzero((d.efc_type[:d.nefc] == mujoco.mjtConstraint.mjCNSTR_EQUALITY) & (d.efc_id[:d.nefc] == self.eq_stopper))
+        if rows.size < 3:
+            return 0.0
+        f = d.efc_force[rows[:3]]
+        axis = d.xmat[self.body_id["bottle"]].reshape(3, 3)[:, 2]
+        return float(f @ axis)
+
+    # ---------------------------------------------------------------- the human's grip
+    def hand_closed(self) -> bool:
+        return bool(np.all(self.data.qpos[self._hand_qadr] >= self._hand_min))
+
+    def grasp_distance(self, obj: str) -> float:
+        """Distance (m) from the human's grasp site to the surface of `obj` (negative inside)."""
+        d = self.data
+        p = d.site_xpos[self.site_id["human_r_grasp"]]
+        b = self.body_id[obj]
+        pos, R = d.xpos[b], d.xmat[b].reshape(3, 3)
+        local = R.T @ (p - pos)
+        if obj == "stopper":
+            return float(np.linalg.norm(p - d.site_xpos[self.site_id["stopper_grasp"]]) - layout.STOPPER_RADIUS)
+        height = layout.BOTTLE_MOUTH_Z if obj == "bottle" else layout.GLASS_HEIGHT
+        radius = layout.BOTTLE_RADIUS if obj == "bottle" else layout.GLASS_RADIUS
+        if obj == "bottle" and local[2] > 0.159:
+            radius = 0.0165  # the neck
+        radial = np.hypot(local[0], local[1]) - radius
+        axial = max(-local[2], local[2] - height, 0.0)
+        return float(max(radial, axial) if radial > 0 or axial > 0 else radial)
+
+    def human_grasp(self, obj: str) -> bool:
+        """Close the human's grip on `obj` if the grasp site is at it and the hand is closed.
+
+        Returns whether the grip holds.  The weld keeps the current relative pose, so
+        nothing jumps.  A grip needs the site above the table top (never through the table)."""
+        if obj not in OBJECTS:
+            raise UserError("human", "object", f"unknown object {obj!r}; use one of {', '.join(OBJECTS)}")
+        m, d = self.model, self.data
+        if not self.hand_closed():
+            return False
+        if d.site_xpos[self.site_id["human_r_grasp"]][2] < layout.TABLE_Z:
+            return False
+        if self.grasp_distance(obj) > GRASP_REACH:
+            return False
+        eq = self.eq_hold[obj]
+        h, o = self.body_id["human_r_hand"], self.body_id[obj]
+        # relpose = pose of the object in the hand frame
+        Rh = d.xmat[h].reshape(3, 3)
+        relpos = Rh.T @ (d.xpos[o] - d.xpos[h])
+        qh_inv = np.zeros(4)
+        mujoco.mju_negQuat(qh_inv, d.xquat[h])
+        relq = np.zeros(4)
+        mujoco.mju_mulQuat(relq, qh_inv, d.xquat[o])
+        m.eq_data[eq, 0:3] = 0.0
+        m.eq_data[eq, 3:6] = relpos
+        m.eq_data[eq, 6:10] = relq
+        m.eq_data[eq, 10] = 1.0
+        d.eq_active[eq] = 1
+        return True
+
+    def human_release(self, obj: str | None = None) -> None:
+        for o in (OBJECTS if obj is None else (obj,)):
+            self.data.eq_active[self.eq_hold[o]] = 0
+
+    def human_holding(self) -> str | None:
+        for o in OBJECTS:
+            if self.data.eq_active[self.eq_hold[o]]:
+                return o
+        return None
+
+    # ---------------------------------------------------------------- contacts
+    def robot_holding(self) -> str | None:
+        """The object the robot's gripper holds by contact: touched by finger 3 and by finger 1 or 2."""
+        d = self.data
+        n = d.ncon
+        if n == 0:
+            return None
+        g1, g2 = d.contact.geom1[:n], d.contact.geom2[:n]
+        for k, o in enumerate(OBJECTS[:2]):
+            parts = set()
+            for a, b in ((g1, g2), (g2, g1)):
+                sel = self.geom_object[a] == k
+                parts.update(self.geom_gripper[b[sel]].tolist())
+            if 3 in parts and (1 in parts or 2 in parts):
+                return o
+        return None
+
+    def _drink(self) -> None:
+        """Particles that reach the mouth are drunk: counted, and parked out of the way."""
+        d, m = self.data, self.model
+        mouth = d.site_xpos[self.site_id["human_mouth"]]
+        pos = d.xpos[self.particle_bodies]
+        near = (np.linalg.norm(pos - mouth, axis=1) < MOUTH_RADIUS) & ~self.drunk
+        for i in np.flatnonzero(near):
+            self.drunk[i] = True
+            g, b = self.particle_geoms[i], self.particle_bodies[i]
+            m.geom_contype[g] = 0
+            m.geom_conaffinity[g] = 0
+            m.body_gravcomp[b] = 1.0
+            qa, va = self.particle_qadr[i], self.particle_vadr[i]
+            d.qpos[qa:qa + 3] = (-0.70, 0.0, 0.80)  # inside the human's torso
+            d.qvel[va:va + 6] = 0.0
+
+    def state(self):
+        """Ground truth (`WorldState`) for scoring, tests and the oracle perception only."""
+        from assistbot.world.state import world_state
+
+        return world_state(self)
