@@ -241,3 +241,19 @@ def test_release_resets_the_decision_and_the_next_cycle_begins():
     d = cog.update(oracle_percept(t, {**truth, "robot": {"status": "failed", "action": "Reach-grasp-open-bottle-fill-glass"}}))
     assert d.released == "Reach-grasp-open-bottle-fill-glass" and cog.decision is None
     assert cog.net.peaks("AEL", 0.5) == [] or cog.net.t > 0
+
+
+# -- monitoring errors and hand-overs -----------------------------------------------------------------
+
+@pytest.mark.parametrize("name, action, tag", [
+    ("error_pour_closed_bottle", "Communicate-Error", "error:pour_closed_bottle"),
+    ("error_drink_empty_glass", "Communicate-Error", "error:drink_empty_glass"),
+    ("give_glass", "Receive-object", "accept:object"),
+])
+def test_errors_and_hand_over(name, action, tag):
+    rep = replay(load_timeline(TIMELINES / f"{name}.yaml"), record=False)
+    assert rep.chosen == [action]
+    said = [s for s in rep.said if s.layer == "AEL"]
+    assert len(said) == 1 and said[0].tag == tag
+    if action == "Receive-object":
+        assert [d.target for d in rep.decisions if d.new] == ["glass"]
