@@ -257,3 +257,12 @@ def test_errors_and_hand_over(name, action, tag):
     assert len(said) == 1 and said[0].tag == tag
     if action == "Receive-object":
         assert [d.target for d in rep.decisions if d.new] == ["glass"]
+
+
+def test_proprioception_puts_the_held_object_in_rws():
+    cog = Cognition()
+    truth = {"bottle": {"zone": "HWS", "state": "closed"}, "glass": {"zone": "RWS", "state": "inverted"},
+             "hand": {"posture": "none"}, "robot": {"holding": "bottle"}}
+    for i in range(1, 6):
+        cog.update(oracle_percept(0.1 * i, truth))
+    assert set(cog.peaks("OML")) == {"bottle_closed_RWS", "glass_inverted_RWS"}

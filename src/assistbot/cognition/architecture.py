@@ -131,10 +131,13 @@ class Cognition:
             else:
                 amp = 0.0
             net.set_stimulus("OL", item, amp)
-        # OML: each seen object at its (state, zone); evidence against its other items
+        # OML: each seen object at its (state, zone); evidence against its other items.
+        # Proprioception wins over vision for the zone of the object in the robot's gripper (it is in RWS).
+        held = percept.robot.holding
         for obj, states in task.OBJECT_STATES.items():
             o = percept.objects.get(obj)
-            here = task.oml_item(obj, o.state, o.zone) if (o is not None and o.seen) else None
+            zone = "RWS" if held == obj else (o.zone if o is not None else None)
+            here = task.oml_item(obj, o.state, zone) if (o is not None and o.seen) else None
             for st in states:
                 for z in task.ZONES:
                     item = task.oml_item(obj, st, z)
