@@ -1,0 +1,118 @@
+"""Differential IK for the 7-DOF arm with mink, one solve per control tick.
+
+Tasks: a `FrameTask` on the site ``robot_tcp`` (the target pose comes from
+the motion primitive) and a `PostureTask` toward a natural arm posture.
+Limits: joint ranges and the joint speeds of the MJCF (custom numeric
+``robot_joint_max_speed``), and two `CollisionAvoidanceLimit`s: the whole arm
+keeps ``human_clearance`` (m) from the human's head and torso, and the
+forearm keeps ``table_clearance`` from the table top (the hand may go near
+it to grasp). A QP without a solution (`mink.NoSolutionFound`) is reported in
+the `IKResult`, never raised; the commanded configuration then stays put.
+"""
+
+from __future__ import annotations
+
+import time
+from dataclasses import dataclass
+
+import mink
+import mujoco
+import numpy as np
+
+from assistbot.robot.ik_model import ARM_GEOMS, ARM_JOINTS, HAND_GEOMS, HUMAN_BODY_GEOMS, TABLE_GEOMS, build_ik_model
+
+#: a relaxed posture: elbow bent, forearm forward, hand above the table in front of the robot
+READY_POSTURE = np.array([-0.77, -0.47, 0.44, 0.74, 0.35, -0.08, 0.29])  # TCP at (0.30, 0.05, 1.00), palm toward -x
+
+
+@dataclass
+class IKParams:
+    position_cost: float = 1.0
+    orientation_cost: float = 0.3
+    posture_cost: float = 2e-3
+    lm_damping: float = 1e-2
+    damping: float = 1e-4
+    human_clearance: float = 0.07   # m between arm geoms and human head/torso (tests require >= 0.05)
+    table_clearance: float = 0.005  # m between the hand and the table top
+    detection_distance: float = 0.15  # m: pairs closer than this enter the QP
+    collision: bool = True
+    speed_scale: float = 0.9        # fraction of the MJCF joint speeds the IK may use
+
+
+@dataclass
+class IKResult:
+    q: np.ndarray            # commanded arm configuration (rad), 7
+    ok: bool                 # False when the QP had no solution
+    reason: str = ""
+    position_error: float = 0.0  # m between the TCP of q and the target
+    rotation_error: float = 0.0  # rad
+    solve_us: float = 0.0
+
+
+class ArmIK:
+    """mink IK on the reduced model (see `ik_model`): `solve(q, target, dt) -> IKResult`."""
+
+    def __init__(self, params: IKParams | None = None, model: mujoco.MjModel | None = None,
+                 max_speed: np.ndarray | None = None) -> None:
+        self.p = p = params or IKParams()
+        self.model = model if model is not None else build_ik_model()
+        self.configuration = mink.Configuration(self.model)
+        self.tcp_task = mink.FrameTask("robot_tcp", "site", position_cost=p.position_cost,
+                                       orientation_cost=p.orientation_cost, lm_damping=p.lm_damping)
+        self.posture_task = mink.PostureTask(self.model, cost=p.posture_cost)
+        self.posture_task.set_target(READY_POSTURE)
+        if max_speed is None:
+            max_speed = _max_speed(self.model)
+        self.max_speed = np.asarray(max_speed, float)
+        velocities = {j: float(v) * p.speed_scale for j, v in zip(ARM_JOINTS, self.max_speed)}
+        self.base_limits = [mink.ConfigurationLimit(self.model), mink.VelocityLimit(self.model, velocities)]
+        forearm = [g for g in ARM_GEOMS if g not in HAND_GEOMS]
+        self.collision_limits = [
+            mink.CollisionAvoidanceLimit(self.model, [(list(ARM_GEOMS), list(HUMAN_BODY_GEOMS))],
+                                         minimum_distance_from_collisions=p.human_clearance,
+                                         collision_detection_distance=p.human_clearance + p.detection_distance),
+            mink.CollisionAvoidanceLimit(self.model, [(list(HAND_GEOMS), list(TABLE_GEOMS))],
+                                         minimum_distance_from_collisions=p.table_clearance,
+                                         collision_detection_distance=p.table_clearance + 0.05),
+            mink.CollisionAvoidanceLimit(self.model, [(forearm, list(TABLE_GEOMS))],
+                                         minimum_distance_from_collisions=0.03,
+                                         collision_detection_distance=0.1),
+        ]
+        self.tcp_site = self.model.site("robot_tcp").id
+        self.shoulder = self.configuration.data.xpos[self.model.body("robot_link1").id].copy()
+
+    def set_posture(self, q: np.ndarray) -> None:
+        self.posture_task.set_target(np.asarray(q, float))
+
+    def tcp_pose(self, q: np.ndarray) -> mink.SE3:
+        self.configuration.update(np.asarray(q, float))
+        return self.configuration.get_transform_frame_to_world("robot_tcp", "site")
+
+    def solve(self, q: np.ndarray, target: mink.SE3, dt: float, collision: bool | None = None) -> IKResult:
+        """One differential IK step from arm configuration ``q`` toward ``target`` (TCP pose in world)."""
+        use_collision = self.p.collision if collision is None else collision
+        q = np.clip(np.asarray(q, float), self.model.jnt_range[:, 0], self.model.jnt_range[:, 1])
+        self.configuration.update(q)
+        self.tcp_task.set_target(target)
+        limits = self.base_limits + (self.collision_limits if use_collision else [])
+        t0 = time.perf_counter()
+        try:
+            v = mink.solve_ik(self.configuration, [self.tcp_task, self.posture_task], dt, "daqp",
+                              damping=self.p.damping, limits=limits)
+        except mink.NoSolutionFound as exc:
+            us = (time.perf_counter() - t0) * 1e6
+            err = self.tcp_task.compute_error(self.configuration)
+            return IKResult(q.copy(), False, f"IK: no solution ({exc})", float(np.linalg.norm(err[:3])),
+                            float(np.linalg.norm(err[3:])), us)
+        us = (time.perf_counter() - t0) * 1e6
+        self.configuration.integrate_inplace(v, dt)
+        q_new = self.configuration.q.copy()
+        err = self.tcp_task.compute_error(self.configuration)
+        return IKResult(q_new, True, "", float(np.linalg.norm(err[:3])), float(np.linalg.norm(err[3:])), us)
+
+
+def _max_speed(model: mujoco.MjModel) -> np.ndarray:
+    try:
+        return np.array(model.numeric("robot_joint_max_speed").data, float)
+    except KeyError:
+        return np.array([1.0, 1.0, 1.2, 1.2, 1.5, 1.5, 2.0])

@@ -1,0 +1,60 @@
+"""The IK model: the scene reduced to what the arm's inverse kinematics needs.
+
+mink solves over every degree of freedom of the model it is given. The full
+scene has free joints for the objects and 40 liquid particles (~270 dofs), so
+the IK runs on a reduced copy instead: the robot with only its 7 arm joints
+(fingers, spread and head frozen at their zero pose), the table, and the
+human's torso and head (made collidable here, in the copy only, so that
+`CollisionAvoidanceLimit` can keep the arm away from them). The human's arm,
+the objects and the liquid are left out.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import mujoco
+
+from assistbot.robot import mjcf_patch
+
+ARM_JOINTS: tuple[str, ...] = tuple(f"robot_j{i}" for i in range(1, 8))
+HUMAN_BODY_GEOMS: tuple[str, ...] = ("human_head", "human_torso")
+TABLE_GEOMS: tuple[str, ...] = ("table_top",)
+#: robot geoms that move with the arm (the pedestal and column do not)
+ARM_GEOMS: tuple[str, ...] = (
+    "robot_upper_arm", "robot_forearm_a", "robot_forearm_b", "robot_palm",
+    "robot_f1_prox", "robot_f1_dist", "robot_f2_prox", "robot_f2_dist", "robot_f3_prox", "robot_f3_dist",
+)
+#: the gripper's geoms (the only ones allowed near the table)
+HAND_GEOMS: tuple[str, ...] = ARM_GEOMS[3:]
+
+_DROP_BODIES = ("bottle", "stopper", "glass", "human_r_upper_arm")
+
+
+def default_scene_xml() -> Path:
+    return Path(__file__).resolve().parents[3] / "assets" / "mjcf" / "scene.xml"
+
+
+def build_ik_model(scene_xml: str | Path | None = None, patch: bool = True) -> mujoco.MjModel:
+    """Compile the reduced IK model from the scene MJCF (default: assets/mjcf/scene.xml).
+
+    ``patch``: apply `mjcf_patch` (the MJCF changes requested from the scene) like the bench does.
+    """
+    spec = mujoco.MjSpec.from_file(str(scene_xml or default_scene_xml()))
+    if patch:
+        mjcf_patch.apply(spec)
+    for group in (spec.keys, spec.equalities, spec.actuators, spec.sensors, spec.excludes):
+        for element in list(group):
+            spec.delete(element)
+    for body in list(spec.bodies):
+        if body.name in _DROP_BODIES or body.name.startswith("particle"):
+            spec.delete(body)
+    for joint in list(spec.joints):
+        if joint.name not in ARM_JOINTS:
+            spec.delete(joint)
+    for geom in spec.geoms:
+        if geom.name in HUMAN_BODY_GEOMS:
+            geom.contype, geom.conaffinity = 1, 1
+    model = spec.compile()
+    assert model.nq == len(ARM_JOINTS), model.nq
+    return model
