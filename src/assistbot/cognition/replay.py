@@ -51,7 +51,7 @@ class Replay:
                 target = self.cognition.target_of(a) if a else None
                 events.append((t, 0, f"{t:7.2f}  DECIDE   {a}" + (f"  (target: {target})" if target else "")))
             else:
-                events.append((t, 0, f"{t:7.2f}  RELEASE  {a}  [{kind}]"))
+                events.append((t, 0, f"{t:7.2f}  RELEASE  {a}  [{kind.replace('release ', '').strip('()')}]"))
         for s in self.said:
             events.append((s.t, 1, f"{s.t:7.2f}  SAY {s.layer:<4} {s.item}: \"{s.text}\"  <{s.tag}>"))
         return [line for _, _, line in sorted(events, key=lambda e: (e[0], e[1]))]
