@@ -204,11 +204,18 @@ class HumanArm:
             return False
         return float(np.linalg.norm(self.hand_pose()[0] - self.p_goal)) < tol
 
-    def set_posture(self, posture: str) -> None:
+    def set_posture(self, posture: str, squeeze: bool = False) -> None:
+        """Command a hand posture (world.HAND_POSTURES).  squeeze=True drives the closing fingers
+        toward their limit (the finger servos are slow and heavily damped); call again
+        without it once the grip holds."""
         if posture not in HAND_POSTURES:
             raise ValueError(f"unknown hand posture {posture!r}; use one of {', '.join(HAND_POSTURES)}")
         self.posture = posture
-        self.world.data.ctrl[self._hand_act] = HAND_POSTURES[posture]
+        target = np.asarray(HAND_POSTURES[posture], float)
+        if squeeze:
+            hi = self.world.model.actuator_ctrlrange[self._hand_act, 1]
+            target = np.where(target > 0.3, hi, target)
+        self.world.data.ctrl[self._hand_act] = target
 
     # ------------------------------------------------------------------ control tick
     def tick(self, t: float, iterations: int = 1) -> None:

@@ -1,0 +1,348 @@
+"""The human's behaviours: generators that drive the arm tick by tick and end in success or failure.
+
+Each behaviour is a generator function ``fn(c, **args)`` over a controller-like context ``c``
+(attributes ``world``, ``arm``, ``t``, ``profile``, ``view`` — the robot as the human last
+perceived it — and a method ``note``).  It yields once per control tick and returns
+``(ok, reason)``.  `Behaviour` wraps one with its status and times.  Every outcome is
+decided by the physics: a grip exists only if the world's grip weld engaged, the stopper
+comes off only if the fit gives, a drink counts only by particles reaching the mouth.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import Callable, Generator
+
+import numpy as np
+
+from assistbot.human.arm import grip_orientation, rot_y, rot_z
+from assistbot.world import layout
+
+Gen = Generator[None, None, tuple[bool, str]]
+
+#: where the human holds an object out / holds out the open palm (world, m): the hand-over zone
+HOLD_OUT = np.array([-0.10, -0.05, 0.95])
+#: lowest height (world z) of a held-out object's base: about 10 cm above the table
+HOLD_OUT_BASE_Z = 0.85
+#: a resting place of the hand near the body
+REST = np.array([-0.34, -0.17, 0.86])
+LIFT = 0.07                       # m lifted after a grasp
+#: grasp-site height above the object's base (m), per object and grip
+GRASP_HEIGHT = {("bottle", "ag"): 0.17, ("bottle", "sg"): 0.085, ("glass", "ag"): 0.085, ("glass", "sg"): 0.055}
+DRINK_FRACTION = 0.75             # share of the glass's particles that must reach the mouth
+TILT_MAX = 2.1                    # rad, glass tilt at the end of a drink
+
+
+@dataclass
+class Behaviour:
+    """One running behaviour: name, arguments, status ("running", "success", "failure")."""
+
+    name: str
+    args: dict
+    gen: Gen
+    t_start: float
+    status: str = "running"
+    reason: str = ""
+    t_end: float | None = None
+
+    def step(self, t: float) -> str:
+        if self.status != "running":
+            return self.status
+        try:
+            next(self.gen)
+        except StopIteration as stop:
+            ok, why = stop.value if stop.value is not None else (True, "")
+            self.status = "success" if ok else "failure"
+            self.reason = why
+            self.t_end = t
+        return self.status
+
+
+# ---------------------------------------------------------------------------- helpers
+def _pos(c, body: str) -> np.ndarray:
+    return c.world.data.xpos[c.world.body_id[body]].copy()
+
+
+def _axis(c, body: str) -> np.ndarray:
+    return c.world.data.xmat[c.world.body_id[body]].reshape(3, 3)[:, 2].copy()
+
+
+def _wait(c, seconds: float) -> Generator[None, None, None]:
+    t_end = c.t + seconds
+    while c.t < t_end - 1e-9:
+        yield
+
+
+def _wait_until(c, cond: Callable[[], bool], timeout: float) -> Generator[None, None, bool]:
+    t_end = c.t + timeout
+    while not cond():
+        if c.t >= t_end:
+            return False
+        yield
+    return True
+
+
+def _move(c, p, R=None, speed: float | None = None, tol: float = 0.03) -> Generator[None, None, bool]:
+    """Reach to p (with rotation R); True when the hand got there."""
+    if c.profile.hesitation > 0:
+        yield from _wait(c, c.profile.hesitation)
+    dur = c.arm.move_to(p, R, t=c.t, speed=speed)
+    t_end = c.t + dur + 1.5
+    while not c.arm.arrived(c.t, tol):
+        if c.t >= t_end:
+            return False
+        yield
+    return True
+
+
+def _close(c, posture: str, obj: str) -> Generator[None, None, bool]:
+    c.arm.set_posture(posture, squeeze=True)
+    ok = yield from _wait_until(c, c.world.hand_closed, 3.0)
+    ok = bool(ok and c.world.human_grasp(obj))
+    c.arm.set_posture(posture)
+    return ok
+
+
+def _center_base(c, obj: str) -> np.ndarray:
+    """The object's base centre, whichever way up it stands."""
+    p, a = _pos(c, obj), _axis(c, obj)
+    return p - layout.GLASS_HEIGHT * a if (obj == "glass" and a[2] < 0) else p
+
+
+def grasp_point(c, obj: str, grip: str) -> np.ndarray:
+    p, a = _pos(c, obj), _axis(c, obj)
+    return p + GRASP_HEIGHT[(obj, grip)] * a if a[2] >= 0 else p + (layout.GLASS_HEIGHT - GRASP_HEIGHT[(obj, grip)]) * a
+
+
+# ---------------------------------------------------------------------------- behaviours
+def grasp(c, object: str, grip: str = "ag", lift: bool = True, hold_out: bool = False) -> Gen:
+    """Reach and grasp `object` with an above (ag) or side (sg) grip, then lift it a little."""
+    if c.world.human_holding() is not None:
+        return False, f"the hand already holds the {c.world.human_holding()}"
+    target = grasp_point(c, object, grip)
+    R = grip_orientation(grip, target)
+    pre = target + (np.array([0, 0, 0.08]) if grip == "ag" else 0.08 * R[:, 2])  # above / back along the fingers
+    c.arm.set_posture("open")
+    if not (yield from _move(c, pre, R)):
+        return False, "could not reach the approach pose"
+    if not (yield from _move(c, target, R, tol=0.02)):
+        return False, f"could not reach the {object}"
+    yield from _wait(c, 0.15)
+    if not (yield from _close(c, grip, object)):
+        c.arm.set_posture("open")
+        return False, f"the grip on the {object} did not close"
+    if lift:
+        yield from _move(c, c.arm.p_goal + np.array([0, 0, LIFT]), R)
+    if hold_out and c.world.human_holding() == object:
+        return (yield from globals()["hold_out"](c, object))
+    return c.world.human_holding() == object, f"{object} in hand"
+
+
+def hold_out(c, object: str | None = None) -> Gen:
+    """Hold the object in hand out toward the robot, in the hand-over zone."""
+    held = c.world.human_holding()
+    if held is None or (object is not None and held != object):
+        return False, "nothing to hold out" if held is None else f"holds the {held}, not the {object}"
+    _, R = c.arm.hand_pose()
+    R = rot_z(np.arctan2(*(HOLD_OUT[:2] - c.arm.p_goal[:2])[::-1]) - np.arctan2(R[1, 2] * -1, R[0, 2] * -1)) @ R
+    target = HOLD_OUT.copy()
+    target[2] = max(target[2], HOLD_OUT_BASE_Z + float(c.arm.hand_pose()[0][2] - _center_base(c, held)[2]))
+    ok = yield from _move(c, target, R)
+    return (ok and c.world.human_holding() == held), f"{held} held out"
+
+
+def put_down(c, object: str | None = None, at: tuple[float, float] | None = None) -> Gen:
+    """Put the object in hand down upright at table spot `at` (default: where the arm is), let go, withdraw."""
+    held = c.world.human_holding()
+    if held is None or (object is not None and held != object):
+        return False, "nothing in hand to put down"
+    base = _center_base(c, held)
+    hand, R = c.arm.hand_pose()
+    offset = hand - base                                   # hand relative to the object's base
+    spot = np.array([*(at if at is not None else (hand[0], hand[1]))]) if at is not None else base[:2]
+    target_base = np.array([spot[0], spot[1], layout.TABLE_Z + 0.004])
+    if not (yield from _move(c, target_base + offset + np.array([0, 0, 0.04]), R)):
+        return False, "could not reach the spot"
+    yield from _move(c, target_base + offset, R, speed=0.05, tol=0.04)
+    c.arm.set_posture("open")
+    yield from _wait(c, 0.5)
+    _, R_now = c.arm.hand_pose()
+    back = -0.08 * R_now[:, 2] if held != "stopper" else np.zeros(3)
+    yield from _move(c, c.arm.p_goal + np.array([0, 0, 0.07]) - back)
+    yield from _move(c, REST, None)
+    p = _center_base(c, held)
+    ok = c.world.human_holding() is None and p[2] < layout.TABLE_Z + 0.03 and np.linalg.norm(p[:2] - spot) < 0.05
+    return bool(ok), f"{held} put down at ({p[0]:.2f}, {p[1]:.2f})"
+
+
+def hand_to_robot(c, object: str, grip: str | None = None, timeout: float = 20.0) -> Gen:
+    """Grasp `object` (if not in hand), hold it out, and let go once the robot holds it."""
+    if c.world.human_holding() != object:
+        ok, why = yield from grasp(c, object, grip or c.profile.grip)
+        if not ok:
+            return False, why
+    ok, why = yield from hold_out(c, object)
+    if not ok:
+        return False, why
+    if not (yield from _wait_until(c, lambda: c.view.holds == object, timeout)):
+        return False, f"the robot did not take the {object}"
+    yield from _wait(c, c.profile.reaction_delay)
+    c.arm.set_posture("open")
+    yield from _wait(c, 0.5)
+    yield from _move(c, REST, None)
+    ok = c.world.human_holding() is None and c.view.holds == object
+    return ok, f"{object} handed over"
+
+
+def take_from_robot(c, object: str | None = None, timeout: float = 20.0) -> Gen:
+    """Take the object the robot holds out: reach it with a side grip, close, wait for the robot to let go."""
+    if not (yield from _wait_until(c, lambda: c.view.offers is not None and (object is None or c.view.offers == object), timeout)):
+        return False, "the robot offers nothing"
+    obj = c.view.offers
+    ok, why = yield from grasp(c, obj, "sg", lift=False)
+    if not ok:
+        return False, why
+    if not (yield from _wait_until(c, lambda: c.view.holds != obj, timeout)):
+        c.arm.set_posture("open")
+        return False, f"the robot did not let go of the {obj}"
+    yield from _move(c, np.array([-0.26, -0.08, 0.90]), None)
+    return c.world.human_holding() == obj, f"took the {obj}"
+
+
+def request(c, hold: float = 0.0) -> Gen:
+    """Hold out an open, empty palm toward the robot (a request); keep it there `hold` s."""
+    if c.world.human_holding() is not None:
+        return False, "the hand is not empty"
+    c.arm.set_posture("request")
+    R = grip_orientation("request", HOLD_OUT)
+    ok = yield from _move(c, HOLD_OUT, R)
+    yield from _wait(c, hold)
+    return ok, "open hand held out"
+
+
+def point(c, object: str, hold: float = 1.5) -> Gen:
+    """Point at `object` with the index finger, then lower the hand."""
+    target = _pos(c, object) + np.array([0, 0, 0.10])
+    c.arm.set_posture("point")
+    d = target - c.arm.hand_pose()[0]
+    d[2] = 0
+    p = target - 0.15 * d / max(np.linalg.norm(d), 1e-6)
+    ok = yield from _move(c, p, grip_orientation("point", target))
+    yield from _wait(c, hold)
+    c.arm.set_posture("open")
+    yield from _move(c, REST, None)
+    return ok, f"pointed at the {object}"
+
+
+def pull_stopper(c, timeout: float = 3.0) -> Gen:
+    """Grip the stopper from above and pull it up; works only if something holds the bottle down."""
+    w = c.world
+    if not w.data.eq_active[w.eq_stopper]:
+        return False, "the bottle is already open"
+    if w.human_holding() is not None:
+        return False, "the hand is not empty"
+    s = w.data.site_xpos[w.site_id["stopper_grasp"]].copy()
+    R = grip_orientation("ag", s)
+    c.arm.set_posture("open")
+    if not (yield from _move(c, s + np.array([0, 0, 0.07]), R)):
+        return False, "could not reach above the stopper"
+    s = w.data.site_xpos[w.site_id["stopper_grasp"]].copy()
+    if not (yield from _move(c, s, R, tol=0.02)):
+        return False, "could not reach the stopper"
+    if not (yield from _close(c, "ag", "stopper")):
+        c.arm.set_posture("open")
+        return False, "the grip on the stopper did not close"
+    b0 = _pos(c, "bottle")[2]
+    c.arm.move_to(s + np.array([0, 0, 0.12]), R, t=c.t, speed=0.15)
+    t_end = c.t + timeout
+    while c.t < t_end:
+        yield
+        if not w.data.eq_active[w.eq_stopper]:
+            break
+        if _pos(c, "bottle")[2] > b0 + 0.02:
+            # the whole bottle comes up with the stopper: nothing holds it; put it back, let go
+            yield from _move(c, s, R)
+            c.arm.set_posture("open")
+            yield from _wait(c, 0.4)
+            yield from _move(c, REST, None)
+            return False, "the bottle lifts with the stopper (nobody holds it)"
+    if w.data.eq_active[w.eq_stopper]:
+        c.arm.set_posture("open")
+        return False, "the stopper did not come off"
+    # put the stopper aside in the HWS
+    ok, _ = yield from put_down(c, "stopper", at=(-0.32, -0.32))
+    return True, "stopper removed"
+
+
+def turn_glass(c) -> Gen:
+    """Turn an inverted glass upright in the HWS: side grip, lift, roll half a turn, put down."""
+    if _axis(c, "glass")[2] > 0:
+        return False, "the glass is already upright"
+    base0 = _center_base(c, "glass")
+    ok, why = yield from grasp(c, "glass", "sg", lift=False)
+    if not ok:
+        return False, why
+    hand, R = c.arm.hand_pose()
+    yield from _move(c, hand + np.array([0, 0, 0.12]), R)
+    axis = -R[:, 2]  # fingers' direction: roll about it
+    a = axis / np.linalg.norm(axis)
+    K = np.array([[0, -a[2], a[1]], [a[2], 0, -a[0]], [-a[1], a[0], 0]])
+    for frac in (0.5, 1.0):
+        ang = -np.pi * frac
+        Rr = np.eye(3) + np.sin(ang) * K + (1 - np.cos(ang)) * K @ K
+        yield from _move(c, hand + np.array([0, 0, 0.14]), Rr @ R, speed=0.1)
+    ok, why = yield from put_down(c, "glass", at=tuple(base0[:2]))
+    up = _axis(c, "glass")[2] > 0.9
+    return bool(ok and up), "glass upright" if up else "the glass is not upright"
+
+
+def drink(c, timeout: float = 6.0) -> Gen:
+    """Bring the glass (grasped if needed) to the mouth and tilt it; counts when >= 75% of its liquid reaches the mouth."""
+    w = c.world
+    if w.human_holding() != "glass":
+        ok, why = yield from grasp(c, "glass", "sg")
+        if not ok:
+            return False, why
+    st = w.state()
+    n0 = st.liquid.in_glass
+    drunk0 = int(w.drunk.sum())
+    mouth = w.data.site_xpos[w.site_id["human_mouth"]].copy()
+    # hand pose that puts the rim at the lips, glass tilted toward the mouth by `tilt`
+    hand, R0 = c.arm.hand_pose()
+    gpos = _pos(c, "glass")
+    rim_in_hand = R0.T @ (gpos + layout.GLASS_HEIGHT * _axis(c, "glass") - hand)
+    Rg = R0
+
+    def pose(tilt: float):
+        Rt = rot_y(-tilt) @ Rg
+        return mouth + np.array([0.025, 0, -0.01]) - Rt @ rim_in_hand, Rt
+
+    p, R = pose(0.3)
+    if not (yield from _move(c, p + np.array([0.06, 0, -0.02]), R)):
+        return False, "could not bring the glass up"
+    yield from _move(c, p, R, tol=0.04)
+    for tilt in np.linspace(0.6, TILT_MAX, 4):
+        p, R = pose(tilt)
+        yield from _move(c, p, R, speed=0.05, tol=0.05)
+    enough = max(1, int(np.ceil(DRINK_FRACTION * max(n0, 1))))
+    got = yield from _wait_until(c, lambda: int(w.drunk.sum()) - drunk0 >= enough and n0 > 0, timeout)
+    drunk = int(w.drunk.sum()) - drunk0
+    p, R = pose(0.2)
+    yield from _move(c, p + np.array([0.08, 0, -0.05]), R)
+    c.note("drink", {"in_glass": n0, "drunk": drunk})
+    if n0 == 0:
+        return False, "the glass was empty: nothing to drink"
+    return bool(got), f"drank {drunk} of {n0} particles"
+
+
+def wait(c, seconds: float) -> Gen:
+    """Do nothing for `seconds`."""
+    yield from _wait(c, seconds)
+    return True, f"waited {seconds:g} s"
+
+
+BEHAVIOURS: dict[str, Callable[..., Gen]] = {
+    "grasp": grasp, "hold_out": hold_out, "put_down": put_down, "hand_to_robot": hand_to_robot,
+    "take_from_robot": take_from_robot, "request": request, "point": point, "pull_stopper": pull_stopper,
+    "turn_glass": turn_glass, "drink": drink, "wait": wait,
+}

@@ -1,0 +1,52 @@
+"""What the human sees of the robot: its visible state, never its internals.
+
+A person at the table sees whether the robot's gripper has an object in it, whether the
+robot's hand is held out toward him (near the middle line, in the hand-over zone), and
+whether that hand is open and empty.  `see_robot` computes exactly that from the scene's
+ground truth (positions and contacts that a person's eyes would give), and nothing of the
+robot's cognition, plans or commands.  Tests may pass another callable with the same
+signature (e.g. for a stand-in robot).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+#: the robot's hand counts as "held out toward the human" when its tool point is within
+#: this x (world, m) of the middle line, on either side
+HELD_OUT_X = 0.20
+OPEN_FINGERS = 0.3   # rad, finger flexion below which the robot's hand looks open
+
+
+@dataclass(frozen=True)
+class RobotView:
+    """The robot as the human sees it."""
+
+    holds: str | None                  # object in the robot's hand ("bottle"/"glass") or None
+    hand_pos: tuple[float, float, float]
+    held_out: bool                     # the hand is near the middle line, toward the human
+    open_hand: bool                    # the hand is open and empty
+
+    @property
+    def offers(self) -> str | None:
+        """An object held out toward the human."""
+        return self.holds if self.held_out else None
+
+    @property
+    def requests(self) -> bool:
+        """An open empty hand held out toward the human."""
+        return self.held_out and self.open_hand and self.holds is None
+
+
+def see_robot(world) -> RobotView:
+    m, d = world.model, world.data
+    tcp = d.site_xpos[world.site_id["robot_tcp"]]
+    flex = []
+    for a in ("robot_finger1", "robot_finger2", "robot_finger3"):
+        j = m.actuator_trnid[m.actuator(a).id, 0]
+        flex.append(d.qpos[m.jnt_qposadr[j]])
+    holds = world.robot_holding()
+    return RobotView(holds, (float(tcp[0]), float(tcp[1]), float(tcp[2])), bool(abs(tcp[0]) < HELD_OUT_X),
+                     bool(holds is None and float(np.max(flex)) < OPEN_FINGERS))

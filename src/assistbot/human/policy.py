@@ -1,0 +1,81 @@
+"""What the human does next: responses to the robot (every profile) and the active default policy.
+
+Responses follow `assistbot.task.drinking.TAG_RESPONSES` (the robot's utterance tag -> the
+partner's answer).  The default policy of a human with initiative picks a move from what he
+sees on the table (positions and states of the objects: a person's eyes) and from what he
+already did; with a seeded chance it first grasps with the wrong grip.
+"""
+
+from __future__ import annotations
+
+from assistbot.task.drinking import TAG_RESPONSES
+
+#: behaviours that a robot's utterance does not interrupt (the hand is busy with an object)
+UNINTERRUPTIBLE = ("pull_stopper", "drink", "put_down", "turn_glass", "take_from_robot")
+
+
+def _scene(c) -> dict:
+    w = c.world
+    d = w.data
+    out = {}
+    for o in ("bottle", "glass"):
+        b = w.body_id[o]
+        out[o + "_x"] = float(d.xpos[b][0])
+        out[o + "_up"] = float(d.xmat[b][8])
+    out["bottle_closed"] = bool(d.eq_active[w.eq_stopper])
+    out["glass_full"] = w.state().glass_state == "full" if out["glass_up"] > 0.7 else False
+    out["holding"] = w.human_holding()
+    return out
+
+
+def response_to_tag(c, tag: str) -> list[tuple[str, dict]]:
+    kind = TAG_RESPONSES.get(tag)
+    what = tag.split(":", 1)[1] if ":" in tag else ""
+    holding = c.world.human_holding()
+    if kind == "remove_stopper":
+        out = []
+        if holding is not None:
+            out.append(("put_down", {}))
+        return out + [("pull_stopper", {})]
+    if kind == "take_object":
+        return [("take_from_robot", {"object": what})]
+    if kind == "give_object":
+        return [("hand_to_robot", {"object": what, "grip": "ag"})]
+    if kind == "drink":
+        return [("drink", {})]
+    if tag == "error:cannot_remove_stopper" and holding == "bottle" and c.profile.initiative:
+        # the robot cannot take the bottle from a side grip: put it down, offer it from above
+        return [("put_down", {"object": "bottle"}), ("hand_to_robot", {"object": "bottle", "grip": "ag"})]
+    return []
+
+
+def response_to_sight(c, key: str) -> list[tuple[str, dict]]:
+    # an active person takes what the robot holds out without being told
+    if key.startswith("robot_offers:") and c.profile.initiative and c.world.human_holding() is None:
+        return [("take_from_robot", {"object": key.split(":", 1)[1]})]
+    return []
+
+
+def next_move(c) -> tuple[str, dict] | None:
+    """The active default policy: the next move toward drinking, or None."""
+    s = _scene(c)
+    st = c.policy_state
+    if s["holding"] is not None:
+        return None
+    if s["glass_x"] < 0 and s["glass_full"] and not st.get("drink"):
+        st["drink"] = True
+        return ("drink", {})
+    if s["glass_x"] < 0 and s["glass_up"] < -0.7 and not st.get("turn"):
+        st["turn"] = True
+        return ("turn_glass", {})
+    if s["bottle_x"] < 0 and s["bottle_closed"] and not st.get("bottle"):
+        st["bottle"] = True
+        grip = c.profile.grip
+        if c.rng.random() < c.profile.wrong_grip:
+            grip = "sg" if grip == "ag" else "ag"
+            c.note("wrong_grip", {"grip": grip})
+        return ("grasp", {"object": "bottle", "grip": grip, "hold_out": True})
+    if s["glass_x"] > 0 and not st.get("request"):
+        st["request"] = True
+        return ("request", {"hold": 3.0})
+    return None
