@@ -273,3 +273,12 @@ def test_compiled_sigmoid_matches_the_exact_one_over_the_whole_range():
     assert np.max(np.abs(got - want)) < 1e-15
     tiny = want > 1e-300
     assert np.max(np.abs(got - want)[tiny] / want[tiny]) < 1e-14
+
+
+def test_item_state_indices_address_items_in_the_state_vector():
+    net = coincidence_net("numpy")
+    net.set_stimulus("target", "C", 5.0)
+    net.run(0.5)
+    idx = net.item_state_indices("target")
+    assert np.array_equal(net.state_u[idx], net.u("target")[net.field("target").item_indices])
+    assert net.state_u[idx[2]] == net.activity("target", "C")

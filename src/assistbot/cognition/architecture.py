@@ -80,12 +80,9 @@ class Cognition:
         self.net = Network.from_dict(self.config.network_dict(), backend=self.backend, seed=self.seed)
         self.layers = LAYERS
         self._thr_idx = {name: self.net.field(name).item_indices for name in LAYERS}
-        # flat indices of the spoken pools' centres in the network's state vector (fields are concatenated in order)
-        offsets = np.cumsum([0] + [self.net.field(f).size for f in self.net.field_names])
-        start = dict(zip(self.net.field_names, offsets[:-1]))
-        self._spoken_idx = np.concatenate([start[L] + self._thr_idx[L] for L in SPOKEN_LAYERS])
+        # the spoken pools' centres in the network's state vector, read in one gather per update
+        self._spoken_idx = np.concatenate([self.net.item_state_indices(L) for L in SPOKEN_LAYERS])
         self._spoken_names = [(L, item) for L in SPOKEN_LAYERS for item in LAYERS[L]]
-        assert np.shares_memory(self.net.u("AEL"), self.net.state_u)
         self.reset()
 
     def set(self, path: str, value: Any) -> None:

@@ -199,6 +199,14 @@ class Network:
         vals = self.u(field)[f.item_indices]
         return dict(zip(f.items, vals.tolist()))
 
+    def item_state_indices(self, field: str) -> np.ndarray:
+        """Indices of the field's item centres in ``state_u``, the one vector holding every field's activity.
+
+        For read-outs that gather items of several fields in one numpy operation.
+        """
+        f = self.spec.field(field)
+        return self._c.slice(field).start + f.item_indices
+
     def presence(self, field: str) -> np.ndarray:
         """c_j of eq. (4): the sigmoid of the activity at each item's centre."""
         f = self.spec.field(field)
