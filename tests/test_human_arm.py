@@ -48,7 +48,7 @@ def test_middle_line_limit_clamps_and_logs():
     world = build_world(PAPER_ARRANGEMENTS["fig3"], seed=0)
     arm = HumanArm(world, speed=0.3)
     arm.move_to((0.35, 0.0, 0.95), ORIENT["sg"], t=0.0)
-    assert len(arm.clamped) == 1 and arm.clamped[0][1][0] == 0.35 and arm.clamped[0][2][0] == HANDOVER_X_MAX
+    assert len(arm.clamped) == 1 and arm.clamped[0][1][0] == 0.35 and arm.clamped[0][2][0] <= HANDOVER_X_MAX
     hand_geoms = [g for g in range(world.model.ngeom) if world.model.body(world.model.geom_bodyid[g]).name.startswith("human_r_")]
     t, xmax = 0.0, -1.0
     for _ in range(150):

@@ -28,8 +28,12 @@ from assistbot.world import HAND_POSTURES, HUMAN_ARM_JOINTS, HUMAN_HAND_JOINTS
 
 #: the hand-over zone reaches this far across the middle line (world/table x, m)
 HANDOVER_X_MAX = 0.05
+#: how far the fingertips may reach beyond the grasp site (m): the site is clamped this far back
+FINGER_REACH = 0.08
 #: lowest grasp-site height (world z, m): 2 cm above the table top
 MIN_Z = 0.77
+#: a reach that starts with the grasp site below this height (world z) first lifts the hand
+LIFT_BELOW_Z = 0.84
 MAX_JOINT_SPEED = 1.2       # rad/s, any arm joint
 MIN_DURATION = 0.4          # s, shortest reach
 ANGULAR_SPEED = 1.0         # rad/s mean hand rotation speed of a reach
@@ -62,7 +66,15 @@ ORIENT = {
 }
 
 
-SHOULDER_XY = np.array([-0.70, -0.21])
+def _shoulder_xy() -> np.ndarray:
+    m = arm_model()
+    d = mujoco.MjData(m)
+    mujoco.mj_kinematics(m, d)
+    return d.xpos[m.body("human_r_upper_arm").id][:2].copy()
+
+
+#: the right shoulder's table (x, y), read from the model
+SHOULDER_XY = _shoulder_xy()
 
 
 def rot_z(angle: float) -> np.ndarray:
@@ -158,6 +170,7 @@ class HumanArm:
         self.q = self.world.data.qpos[self._wq].copy()
         self.q_rest = self.q.copy()
         self.segment: Segment | None = None
+        self.segments: list[Segment] = []
         p, R = self.fk(self.q)
         self.p_goal, self.R_goal = p, R
 
@@ -177,8 +190,8 @@ class HumanArm:
         """Apply the body's limits to a hand target; log an attempt beyond the middle line."""
         p = np.array(p, dtype=float)
         q = p.copy()
-        if q[0] > HANDOVER_X_MAX:
-            q[0] = HANDOVER_X_MAX
+        if q[0] > HANDOVER_X_MAX - FINGER_REACH:
+            q[0] = HANDOVER_X_MAX - FINGER_REACH
             self.clamped.append((float(t), tuple(p), tuple(q)))
         q[2] = max(q[2], MIN_Z)
         return q
@@ -190,13 +203,23 @@ class HumanArm:
         p1 = self.clamp_target(p, t)
         p0, R0 = self.fk(self.q)
         R1 = R0 if R is None else np.asarray(R, float)
+        v = self.speed if speed is None else speed
+        segs = []
+        t0 = float(t)
+        if p0[2] < LIFT_BELOW_Z and float(np.linalg.norm(p1[:2] - p0[:2])) > 0.05:
+            # a hand resting near the table first comes up, so fingers do not drag on the table
+            up = p0 + np.array([0.0, 0.0, LIFT_BELOW_Z + 0.03 - p0[2]])
+            d_up = max(0.3, float(up[2] - p0[2]) / v)
+            segs.append(Segment(t0, d_up, p0, up, R0, np.zeros(3)))
+            t0, p0 = t0 + d_up, up
         dw = _log_rot(R1 @ R0.T)
         if duration is None:
-            v = self.speed if speed is None else speed
             duration = max(MIN_DURATION, float(np.linalg.norm(p1 - p0)) / v, float(np.linalg.norm(dw)) / ANGULAR_SPEED * self.speed / v)
-        self.segment = Segment(float(t), float(duration), p0, p1, R0, dw)
+        segs.append(Segment(t0, float(duration), p0, p1, R0, dw))
+        self.segments = segs
+        self.segment = segs[-1]
         self.p_goal, self.R_goal = p1, R1
-        return float(duration)
+        return float(t0 + duration - t)
 
     def arrived(self, t: float, tol: float = 0.03) -> bool:
         """The motion's time is up and the measured hand is within tol (m) of the goal."""
@@ -221,7 +244,8 @@ class HumanArm:
     def tick(self, t: float, iterations: int = 1) -> None:
         """One control tick at time t: follow the segment with IK and command the servos."""
         if self.segment is not None:
-            p_t, R_t = self.segment.at(t + self.dt)
+            seg = next((g for g in self.segments if not g.done(t + self.dt)), self.segment)
+            p_t, R_t = seg.at(t + self.dt)
         else:
             p_t, R_t = self.p_goal, self.R_goal
         q = self.q
