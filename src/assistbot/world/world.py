@@ -55,11 +55,12 @@ HAND_POSTURES: dict[str, tuple[float, ...]] = {
 _CLOSED_MIN = {"human_r_index_prox": 0.6, "human_r_fingers_prox": 0.6, "human_r_thumb_opp": 0.5}
 
 #: Robot finger targets: open, and "closed" (beyond any object: the servos then squeeze).
-GRIPPER_OPEN = 0.0
+GRIPPER_OPEN = -0.3
 GRIPPER_CLOSED = 1.6
 
 #: Home posture: joint -> angle (also the scene's `home` keyframe).
-HOME = {"robot_head_tilt": 0.75, "human_r_shoulder_flex": 0.35, "human_r_elbow": 1.45,
+HOME = {"robot_head_tilt": 0.75, "robot_j1": 0.1, "robot_j4": 0.8, "robot_j6": -0.4,
+        "human_r_shoulder_flex": 0.35, "human_r_elbow": 1.7,
         "human_r_forearm_rot": 1.2}
 
 
@@ -239,8 +240,8 @@ class World:
             return float(np.linalg.norm(p - d.site_xpos[self.site_id["stopper_grasp"]]) - layout.STOPPER_RADIUS)
         height = layout.BOTTLE_MOUTH_Z if obj == "bottle" else layout.GLASS_HEIGHT
         radius = layout.BOTTLE_RADIUS if obj == "bottle" else layout.GLASS_RADIUS
-        if obj == "bottle" and local[2] > 0.159:
-            radius = 0.0165  # the neck
+        if obj == "bottle" and local[2] > 0.128:
+            radius = 0.0165  # shoulder and neck
         radial = np.hypot(local[0], local[1]) - radius
         axial = max(-local[2], local[2] - height, 0.0)
         return float(max(radial, axial) if radial > 0 or axial > 0 else radial)
@@ -315,7 +316,7 @@ class World:
             m.geom_conaffinity[g] = 0
             m.body_gravcomp[b] = 1.0
             qa, va = self.particle_qadr[i], self.particle_vadr[i]
-            d.qpos[qa:qa + 3] = (-0.70, 0.0, 0.80)  # inside the human's torso
+            d.qpos[qa:qa + 3] = (-0.60, 0.0, 0.80)  # inside the human's torso
             d.qvel[va:va + 6] = 0.0
 
     def state(self):
