@@ -316,7 +316,7 @@ class World:
             m.geom_conaffinity[g] = 0
             m.body_gravcomp[b] = 1.0
             qa, va = self.particle_qadr[i], self.particle_vadr[i]
-            d.qpos[qa:qa + 3] = (-0.60, 0.0, 0.80)  # inside the human's torso
+            d.qpos[qa:qa + 3] = (-0.55, 0.0, 0.80)  # inside the human's torso
             d.qvel[va:va + 6] = 0.0
 
     def state(self):
