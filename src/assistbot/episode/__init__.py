@@ -1,0 +1,64 @@
+"""The closed loop: one scenario run in simulated time, with its log, summary, figures and video.
+
+``run_scenario("paper-fig3-4", out="render/paper-fig3-4")`` runs an episode and
+writes its outputs; `Episode` is the loop itself (see `runner`).
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Any
+
+from assistbot.scenario import Scenario, load_scenario
+
+
+def run_scenario(spec: str | Path | Scenario, out: str | Path | None = None, perception: str = "vision",
+                 seed: int | None = None, overrides: dict[str, Any] | None = None, video: bool = True,
+                 progress: bool = False):
+    """Run one episode; with ``out``, write log.jsonl, summary.json, subtitles.srt, figures and video.mp4 there."""
+    from assistbot.episode.outputs import FRAME_EVERY, VideoRecorder, add_audio, write_figures, write_log, write_srt_for, write_summary
+    from assistbot.episode.runner import Episode
+
+    scenario = spec if isinstance(spec, Scenario) else load_scenario(spec)
+    ep = Episode(scenario, perception=perception, seed=seed, overrides=overrides,
+                 frame_every=FRAME_EVERY if (video and out is not None) else None)
+    out_dir = Path(out) if out is not None else None
+    rec_video = None
+    if out_dir is not None:
+        out_dir.mkdir(parents=True, exist_ok=True)
+        if video:
+            rec_video = VideoRecorder(ep, out_dir / "video.mp4")
+            ep.on_frame = rec_video
+    recorder = ep.cognition.record(every=20) if out_dir is not None else None
+    bar = None
+    if progress:
+        from tqdm import tqdm
+
+        bar = tqdm(total=round(scenario.time_limit, 1), unit="sim s", desc=scenario.name, leave=True,
+                   bar_format="{desc}: {percentage:3.0f}%|{bar}| {n:.1f}/{total:.0f} sim s [{elapsed}<{remaining}]")
+
+        def tick(t: float) -> None:
+            bar.n = round(min(t, scenario.time_limit), 1)
+            if int(t * 50) % 25 == 0:
+                bar.refresh()
+    else:
+        tick = None
+    try:
+        result = ep.run(progress=tick)
+    finally:
+        if bar is not None:
+            bar.close()
+        if rec_video is not None:
+            rec_video.close()
+        close = getattr(ep.perception, "close", None)
+        if close is not None:
+            close()
+    if out_dir is not None:
+        write_log(ep, out_dir / "log.jsonl")
+        write_srt_for(ep, out_dir / "subtitles.srt")
+        audio = False
+        if rec_video is not None and rec_video.writer.frames:
+            audio = add_audio(ep, out_dir / "video.mp4", rec_video.writer.frames / rec_video.writer.fps)
+        figures = [str(p) for p in write_figures(ep, recorder, out_dir)]
+        write_summary(result, out_dir / "summary.json", {"figures": figures, "video_has_audio": audio})
+    return result

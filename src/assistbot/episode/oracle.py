@@ -1,0 +1,72 @@
+"""ORACLE perception for episodes: the world's ground truth turned into a `Percept`.
+
+For debugging and for tests that isolate cognition from vision; every output
+of an oracle run says so (`ORACLE_LABEL`). Vision produces the same Percept
+from the robot's cameras.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from assistbot.cognition.oracle import ORACLE_LABEL, oracle_percept
+from assistbot.cognition.percept import Percept
+from assistbot.world import TABLE_Z
+
+# A hand this close to the middle line (x = 0) with an object or an open palm is "held out".
+HELD_OUT_X = -0.16
+
+__all__ = ["ORACLE_LABEL", "OraclePerception"]
+
+
+def _hand_truth(world, human) -> dict:
+    """The hand posture a perfect observer would name, from the human's arm and what it holds."""
+    hand = world.site_pos("human_r_grasp")
+    xyz = [float(hand[0]), float(hand[1]), float(hand[2] - TABLE_Z)]
+    holding = world.human_holding()
+    posture = human.arm.posture
+    behaviour = human.current.name if human.current is not None else None
+    args = human.current.args if human.current is not None else {}
+    out: dict = {"position": xyz, "posture": "none", "object_in_hand": holding}
+    if behaviour == "pull_stopper":
+        out["posture"] = "remove_stopper"
+    elif behaviour == "drink" and holding == "glass":
+        out["posture"] = "drink"
+    elif holding is not None and posture in ("ag", "sg"):
+        out["posture"] = "grasp_ag" if posture == "ag" else "grasp_sg"
+    elif posture == "request":
+        out["posture"] = "open_palm_request"
+    elif posture == "point":
+        out["posture"] = "pointing"
+        out["pointed_at"] = args.get("object")
+    elif behaviour in ("grasp", "hand_to_robot", "take_from_robot") and holding is None and args.get("object"):
+        out["posture"] = "reach"
+        out["directed_at"] = args.get("object")
+    out["held_out"] = bool(xyz[0] > HELD_OUT_X and (holding is not None or out["posture"] == "open_palm_request"))
+    return out
+
+
+class OraclePerception:
+    """ORACLE: reads WorldState and the human's arm; never used by vision runs."""
+
+    label = ORACLE_LABEL
+
+    def __init__(self, world, human) -> None:
+        self.world = world
+        self.human = human
+
+    def perceive(self, t: float, robot: dict) -> Percept:
+        s = self.world.state()
+        tz = TABLE_Z
+        truth: dict = {"robot": robot, "hand": _hand_truth(self.world, self.human)}
+        for name in ("bottle", "glass"):
+            o = s.objects[name]
+            truth[name] = {
+                "zone": o.zone,
+                "state": s.bottle_state if name == "bottle" else s.glass_state,
+                "position": [o.pos[0], o.pos[1], o.pos[2] - tz],
+            }
+        return oracle_percept(t, truth)
+
+    def overlay(self) -> np.ndarray | None:
+        return None

@@ -1,0 +1,107 @@
+"""What a run leaves in its folder: log.jsonl, summary.json, subtitles.srt, the seed-style figures, video.mp4.
+
+Files are written as soon as their content is final; the video is written
+frame by frame during the run and gets its audio track at the end.
+"""
+
+from __future__ import annotations
+
+import json
+import types
+import warnings
+from pathlib import Path
+
+import numpy as np
+
+from assistbot.episode.runner import LAYERS_SHOWN, Episode, EpisodeResult
+from assistbot.speech import espeak_available, mux, synthesize, write_srt
+from assistbot.video import VideoWriter, compose_frame
+
+VIDEO_FPS = 10
+FRAME_EVERY = 1.0 / VIDEO_FPS  # simulated seconds per frame: the video plays in real time
+PANEL_NAMES = {"CSGL_past": "CSGL past", "CSGL_present": "CSGL present", "CSGL_future": "CSGL future"}
+
+
+class VideoRecorder:
+    """Renders the scene camera and the robot's left camera (with the vision overlay) each frame."""
+
+    def __init__(self, episode: Episode, path: Path, size: tuple[int, int] = (1280, 720)) -> None:
+        from assistbot.world.render import Renderer
+
+        self.path = path
+        self.size = size
+        self.renderer = Renderer(episode.world.model, width=640, height=480)
+        self.writer = VideoWriter(path, fps=VIDEO_FPS)
+        label = "ORACLE perception (ground truth, not vision)" if episode.perception_mode == "oracle" else "perception: vision"
+        self.header_base = f"{episode.scenario.name}  |  seed {episode.seed}  |  {label}"
+
+    def __call__(self, ep: Episode) -> None:
+        scene = self.renderer.rgb(ep.world.data, "scene_cam")
+        camera = ep.perception.overlay()
+        if camera is None:
+            camera = self.renderer.rgb(ep.world.data, "head_cam_left")
+        net = ep.cognition.net
+        layers = [(PANEL_NAMES.get(L, L), net.activities(L)) for L in LAYERS_SHOWN]
+        now = ep.world.time
+        # the robot's reasoning while it is fresh, else what it says it is doing for as long as it does it
+        recent = [u for u in ep.speech.utterances if now - u.t < 2.5]
+        if not recent and ep.robot.action:
+            recent = [u for u in ep.speech.utterances if u.source == f"AEL:{ep.robot.action}"]
+        subtitle = recent[-1].text if recent else ""
+        action = ep.robot.action or "-"
+        header = f"{self.header_base}  |  t = {ep.world.time:6.1f} s  |  robot: {action}"
+        self.writer.append(compose_frame(scene, camera, layers, subtitle=subtitle, header=header, size=self.size))
+
+    def close(self) -> None:
+        self.writer.close()
+        self.renderer.close()
+
+
+def write_log(episode: Episode, path: Path) -> Path:
+    with path.open("w", encoding="utf-8") as f:
+        for row in sorted(episode.log, key=lambda r: r["t"]):
+            f.write(json.dumps(row, default=_jsonable) + "\n")
+    return path
+
+
+def _jsonable(v):
+    if isinstance(v, (np.floating, np.integer)):
+        return v.item()
+    if isinstance(v, np.ndarray):
+        return v.tolist()
+    return str(v)
+
+
+def write_summary(result: EpisodeResult, path: Path, extra: dict | None = None) -> Path:
+    data = result.summary()
+    if extra:
+        data.update(extra)
+    path.write_text(json.dumps(data, indent=2, default=_jsonable) + "\n", encoding="utf-8")
+    return path
+
+
+def write_figures(episode: Episode, recorder, out: Path) -> list[Path]:
+    """The seed's figures (ASL/AEL input and activity, CSGL panels) from the run's field recording."""
+    from assistbot.cognition.figures import write_figures as cognition_figures
+    from assistbot.cognition.replay import Replay
+
+    label = f"{episode.scenario.name}" + (" (ORACLE perception)" if episode.perception_mode == "oracle" else "")
+    rep = Replay(timeline=types.SimpleNamespace(name=label), cognition=episode.cognition, recorder=recorder)
+    return cognition_figures(rep, out)
+
+
+def add_audio(episode: Episode, video: Path, duration: float) -> bool:
+    """Speak the utterances under the video; False (and one warning) without espeak-ng."""
+    if not espeak_available():
+        warnings.warn("espeak-ng not found: video.mp4 is silent (apt-get install espeak-ng)", stacklevel=2)
+        return False
+    wav = synthesize(list(episode.speech), duration, video.with_suffix(".wav"))
+    tmp = video.with_name("video.muxed.mp4")
+    mux(video, wav, tmp)
+    tmp.replace(video)
+    wav.unlink()
+    return True
+
+
+def write_srt_for(episode: Episode, path: Path) -> Path:
+    return write_srt(list(episode.speech), path)
