@@ -83,6 +83,9 @@ class Cognition:
         # the spoken pools' centres in the network's state vector, read in one gather per update
         self._spoken_idx = np.concatenate([self.net.item_state_indices(L) for L in SPOKEN_LAYERS])
         self._spoken_names = [(L, item) for L in SPOKEN_LAYERS for item in LAYERS[L]]
+        self._all_idx = np.concatenate([self.net.item_state_indices(L) for L in LAYERS])
+        ends = np.cumsum([len(LAYERS[L]) for L in LAYERS])
+        self._all_spans = {L: (int(e - len(LAYERS[L])), int(e)) for L, e in zip(LAYERS, ends)}
         self.reset()
 
     def set(self, path: str, value: Any) -> None:
@@ -206,7 +209,7 @@ class Cognition:
             released=self._released,
             error=self.error,
             utterances=self._pending,
-            peaks={L: self.peaks(L) for L in LAYERS},
+            peaks=self._all_peaks(),
         )
         self._pending = []
         self._new = False
@@ -214,6 +217,16 @@ class Cognition:
         return d
 
     # -- read-out -----------------------------------------------------------------------
+    def _all_peaks(self) -> dict[str, list[str]]:
+        """Items above threshold per layer, strongest first: one gather over all layers (this runs every tick)."""
+        thr = float(self.config.data["readout"]["threshold"])
+        u = self.net.state_u[self._all_idx].tolist()
+        out = {}
+        for layer, (a, b) in self._all_spans.items():
+            above = [(v, item) for v, item in zip(u[a:b], LAYERS[layer]) if v > thr]
+            out[layer] = [item for _, item in sorted(above, key=lambda p: -p[0])]
+        return out
+
     def peaks(self, layer: str) -> list[str]:
         return self.net.peaks(layer, float(self.config.data["readout"]["threshold"]))
 

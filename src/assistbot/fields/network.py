@@ -62,6 +62,9 @@ class Network:
         self._c: Compiled = compile_spec(self.spec)
         self._stepper = make_stepper(self._c, self.backend_request)
         c = self._c
+        # per field: its slice of the state vector and its item centres (read-outs use them every tick)
+        self._slices = {name: c.slice(name) for name in c.names}
+        self._items_at = {name: self.spec.fields[name].item_indices for name in c.names}
         self.state_u = c.h.copy()
         self._S = np.zeros(c.size)
         self._S_ext = np.zeros(c.size)
@@ -176,15 +179,20 @@ class Network:
         self.state_u[self._c.slice(self.spec.field(field).name)] = self.spec.fields[field].h
 
     # -- read-out -----------------------------------------------------------------------
+    def _slice(self, field: str) -> slice:
+        try:
+            return self._slices[field]
+        except KeyError:
+            self.spec.field(field)  # raises the FieldError naming the known fields
+            raise
+
     def u(self, field: str) -> np.ndarray:
         """Activity of a field (a view: copy it to keep it)."""
-        self.spec.field(field)
-        return self.state_u[self._c.slice(field)]
+        return self.state_u[self._slice(field)]
 
     def input(self, field: str) -> np.ndarray:
         """Total input S(x) (stimuli + couplings) of the last step."""
-        self.spec.field(field)
-        return self._S[self._c.slice(field)]
+        return self._S[self._slice(field)]
 
     def output(self, field: str) -> np.ndarray:
         f = self.spec.field(field)
@@ -195,27 +203,28 @@ class Network:
         return float(self.u(field)[f.item_index(item)])
 
     def activities(self, field: str) -> dict[str, float]:
-        f = self.spec.field(field)
-        vals = self.u(field)[f.item_indices]
-        return dict(zip(f.items, vals.tolist()))
+        vals = self.u(field)[self._items_at[field]]
+        return dict(zip(self.spec.fields[field].items, vals.tolist()))
 
     def item_state_indices(self, field: str) -> np.ndarray:
         """Indices of the field's item centres in ``state_u``, the one vector holding every field's activity.
 
         For read-outs that gather items of several fields in one numpy operation.
         """
-        f = self.spec.field(field)
-        return self._c.slice(field).start + f.item_indices
+        return self._slice(field).start + self._items_at[field]
 
     def presence(self, field: str) -> np.ndarray:
         """c_j of eq. (4): the sigmoid of the activity at each item's centre."""
-        f = self.spec.field(field)
-        return self.output(field)[f.item_indices]
+        return self.output(field)[self._items_at[field]]
 
     def peaks(self, field: str, threshold: float = 0.0) -> list[str]:
         """Items whose centre activity is above ``threshold``, strongest first."""
-        acts = self.activities(field)
-        return [k for k, v in sorted(acts.items(), key=lambda kv: -kv[1]) if v > threshold]
+        vals = self.u(field)[self._items_at[field]]
+        above = np.flatnonzero(vals > threshold)
+        if above.size == 0:
+            return []
+        items = self.spec.fields[field].items
+        return [items[i] for i in above[np.argsort(-vals[above], kind="stable")]]
 
     def peak_positions(self, field: str, threshold: float = 0.0) -> list[float]:
         """Positions (field units) of local maxima above ``threshold``, for fields without items."""
