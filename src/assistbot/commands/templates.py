@@ -1,0 +1,48 @@
+"""`assistbot templates`: calibrate the colours and build the vision template library in assets/templates/.
+
+Renders labelled scenes (the "library" seed stream: never used for scoring) from the head
+cameras over random arrangements, object positions, hand postures and head angles, and
+writes small prototype PNGs, index.json (classes, prototypes, labelled feature examples) and
+calibration.json.  Deterministic for a seed: the same seed rewrites identical files.
+With --check it only loads the library (exit 2 with a message if it is missing).
+"""
+
+from __future__ import annotations
+
+import argparse
+import sys
+from pathlib import Path
+
+NAME = "templates"
+HELP = "build the vision template library (assets/templates/) from rendered labelled scenes"
+ORDER = 40
+
+
+def add_arguments(p: argparse.ArgumentParser) -> None:
+    p.add_argument("--seed", type=int, default=0, help="library seed (default 0)")
+    p.add_argument("--scenes", type=int, default=240, help="labelled scenes to render (default 240)")
+    p.add_argument("--out", type=Path, default=None, help="output folder (default assets/templates)")
+    p.add_argument("--check", action="store_true", help="only check that the library loads")
+
+
+def run(args: argparse.Namespace) -> int:
+    from assistbot.errors import UserError
+
+    if args.check:
+        from assistbot.vision.library import load
+        clfs, _ = load(args.out)
+        print(", ".join(f"{k}: {len(c.classes)} classes, {len(c.y)} examples" for k, c in clfs.items()))
+        return 0
+    if args.scenes < 12:
+        raise UserError("arguments", "--scenes", f"need at least 12 scenes, got {args.scenes}")
+    from assistbot.vision.pipeline import build_library
+
+    def progress(i: int, n: int) -> None:
+        if i % 20 == 0 or i == n:
+            print(f"\rtemplates: {i}/{n} scenes", end="", file=sys.stderr, flush=True)
+
+    files = build_library(args.seed, args.scenes, args.out, progress)
+    print(file=sys.stderr)
+    size = sum(f.stat().st_size for f in files)
+    print(f"wrote {len(files)} files ({size / 1024:.0f} kB) to {files[0].parent}")
+    return 0

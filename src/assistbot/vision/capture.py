@@ -1,0 +1,110 @@
+"""Stereo capture: both head cameras rendered offscreen at a fixed rate of simulated time.
+
+`StereoCapture.grab(data)` renders head_cam_left and head_cam_right (default 320x240, no
+shadows) and returns a `StereoFrame` with the two RGB images and the two `CameraModel`s taken
+from the same ``data`` (so the extrinsics match the head pose of the images).  A seeded
+dropout probability drops whole frames (``frame.dropped``: no images): vision then reports
+everything as not seen.
+
+Rendering uses `assistbot.world.render.Renderer` on a private copy of the model in which the
+glass material is rendered translucent (``glass_alpha``): a drinking glass is see-through, and
+that is how a camera tells a full glass from an empty one at the head's viewing angles (an
+opaque wall hides the liquid).  Physics never sees that copy.
+"""
+
+from __future__ import annotations
+
+import copy
+import time
+from dataclasses import dataclass, field
+
+import mujoco
+import numpy as np
+
+from assistbot.vision.camera import CameraModel
+from assistbot.world.render import Renderer
+
+CAMERAS = ("head_cam_left", "head_cam_right")
+
+
+@dataclass
+class CaptureConfig:
+    """Rate (Hz of simulated time), image size, frame dropout probability, glass alpha."""
+
+    rate: float = 10.0
+    width: int = 320
+    height: int = 240
+    dropout: float = 0.0
+    seed: int = 0
+    glass_alpha: float | None = 0.4
+
+    def validate(self) -> "CaptureConfig":
+        from assistbot.errors import UserError
+        if not self.rate > 0:
+            raise UserError("vision", "rate", f"must be > 0 Hz, got {self.rate}")
+        if not (16 <= self.width <= 1280 and 16 <= self.height <= 960):
+            raise UserError("vision", "size", f"{self.width}x{self.height} outside 16x16 .. 1280x960")
+        if not 0.0 <= self.dropout <= 1.0:
+            raise UserError("vision", "--vision-dropout", f"a probability in [0, 1], got {self.dropout}")
+        return self
+
+
+@dataclass
+class StereoFrame:
+    t: float
+    left: np.ndarray | None
+    right: np.ndarray | None
+    cams: tuple[CameraModel, CameraModel]
+    dropped: bool = False
+    render_ms: float = 0.0
+    meta: dict = field(default_factory=dict)
+
+
+class StereoCapture:
+    """Renders the head cameras; close it (or use ``with``) when done."""
+
+    def __init__(self, model: mujoco.MjModel, config: CaptureConfig | None = None) -> None:
+        self.config = (config or CaptureConfig()).validate()
+        self.model = model
+        self._render_model = model
+        if self.config.glass_alpha is not None:
+            self._render_model = copy.deepcopy(model)
+            self._render_model.mat_rgba[self._render_model.material("glass").id, 3] = self.config.glass_alpha
+        self.renderer = Renderer(self._render_model, self.config.width, self.config.height, shadows=False)
+        self._rng = np.random.default_rng(self.config.seed)
+        self._next_t = 0.0
+
+    def due(self, t: float) -> bool:
+        """True once per 1/rate seconds of simulated time (call every control tick)."""
+        if t + 1e-9 >= self._next_t:
+            period = 1.0 / self.config.rate
+            self._next_t = (np.floor((t + 1e-9) / period) + 1) * period
+            return True
+        return False
+
+    def cameras(self, data: mujoco.MjData) -> tuple[CameraModel, CameraModel]:
+        c = self.config
+        return tuple(CameraModel.from_data(self.model, data, n, c.width, c.height) for n in CAMERAS)  # type: ignore[return-value]
+
+    def grab(self, data: mujoco.MjData) -> StereoFrame:
+        cams = self.cameras(data)
+        if self.config.dropout > 0 and self._rng.random() < self.config.dropout:
+            return StereoFrame(float(data.time), None, None, cams, dropped=True)
+        t0 = time.perf_counter()
+        left = self.renderer.rgb(data, CAMERAS[0])
+        right = self.renderer.rgb(data, CAMERAS[1])
+        ms = (time.perf_counter() - t0) * 1000.0
+        return StereoFrame(float(data.time), left, right, cams, render_ms=ms)
+
+    def segmentation(self, data: mujoco.MjData) -> tuple[np.ndarray, np.ndarray]:
+        """Ground-truth pixel labels of both cameras: for calibration and labelling only, never inference."""
+        return self.renderer.segmentation(data, CAMERAS[0]), self.renderer.segmentation(data, CAMERAS[1])
+
+    def close(self) -> None:
+        self.renderer.close()
+
+    def __enter__(self) -> "StereoCapture":
+        return self
+
+    def __exit__(self, *exc) -> None:
+        self.close()

@@ -1,0 +1,115 @@
+"""Scoring vision against labelled scenes: per-class precision/recall, confusions, position errors, timings.
+
+Used by benchmarks/vision_accuracy.py and by the tests.  Labels come from `scenes.pose`
+(WorldState + the posed spec); the scenes come from a seed stream the library never uses.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from assistbot.vision.library import KINDS
+
+
+@dataclass
+class Score:
+    truth: dict[str, list[str]] = field(default_factory=lambda: {k: [] for k in KINDS})
+    pred: dict[str, list[str]] = field(default_factory=lambda: {k: [] for k in KINDS})
+    pos_err: list[float] = field(default_factory=list)
+    unseen: dict[str, int] = field(default_factory=lambda: {k: 0 for k in KINDS})
+    render_ms: list[float] = field(default_factory=list)
+    process_ms: list[float] = field(default_factory=list)
+    frames: int = 0
+
+    def add(self, percept, labels, visible: dict[str, bool]) -> None:
+        self.frames += 1
+        for o in ("bottle", "glass"):
+            if not visible[o]:
+                continue
+            op = percept.objects[o]
+            if not op.seen:
+                self.unseen[o] += 1
+                continue
+            self.truth[o].append(labels.objects[o]["state"])
+            self.pred[o].append(op.state)
+            self.pos_err.append(float(np.linalg.norm(np.array(op.position) - np.array(labels.objects[o]["position"]))))
+        if visible["hand"]:
+            if not percept.hand.seen:
+                self.unseen["hand"] += 1
+            else:
+                self.truth["hand"].append(labels.posture)
+                self.pred["hand"].append(percept.hand.posture)
+
+    def accuracy(self, kind: str | tuple[str, ...]) -> float:
+        kinds = (kind,) if isinstance(kind, str) else kind
+        t = sum((self.truth[k] for k in kinds), [])
+        p = sum((self.pred[k] for k in kinds), [])
+        return float(np.mean([a == b for a, b in zip(t, p)])) if t else float("nan")
+
+    def confusion(self, kind: str) -> np.ndarray:
+        cl = KINDS[kind]
+        M = np.zeros((len(cl), len(cl)), int)
+        for a, b in zip(self.truth[kind], self.pred[kind]):
+            M[cl.index(a), cl.index(b)] += 1
+        return M
+
+    def report(self) -> str:
+        lines = [f"frames (stereo pairs): {self.frames}"]
+        for kind in KINDS:
+            M = self.confusion(kind)
+            cl = KINDS[kind]
+            n = M.sum()
+            lines.append(f"\n{kind}: accuracy {self.accuracy(kind) * 100:.1f}% over {n} seen (+{self.unseen[kind]} visible but reported unseen)")
+            lines.append(f"  {'class':<18} {'precision':>9} {'recall':>7} {'n':>5}")
+            for i, c in enumerate(cl):
+                prec = M[i, i] / M[:, i].sum() if M[:, i].sum() else float("nan")
+                rec = M[i, i] / M[i].sum() if M[i].sum() else float("nan")
+                lines.append(f"  {c:<18} {prec * 100:>8.1f}% {rec * 100:>6.1f}% {M[i].sum():>5}")
+            w = max(len(c) for c in cl)
+            lines.append("  confusion (rows truth, columns predicted): " + " ".join(c[:8] for c in cl))
+            for i, c in enumerate(cl):
+                lines.append(f"  {c:<{w}} " + " ".join(f"{v:>8}" for v in M[i]))
+        e = np.array(self.pos_err) * 100
+        if e.size:
+            lines.append(f"\nobject position error: median {np.median(e):.2f} cm, 95th percentile {np.percentile(e, 95):.2f} cm, max {e.max():.1f} cm (n={e.size})")
+        if self.render_ms:
+            lines.append(f"ms per stereo pair: rendering {np.median(self.render_ms):.2f} (median), processing {np.median(self.process_ms):.2f} (median), "
+                         f"{np.percentile(self.process_ms, 95):.2f} (95th)")
+        return "\n".join(lines)
+
+
+def visibility(segs, min_px: int = 25) -> dict[str, bool]:
+    """Which labelled things both cameras show with at least min_px pixels (from the renderer's segmentation)."""
+    from assistbot.world.render import SEGMENT_LABELS
+    inv = {v: k for k, v in SEGMENT_LABELS.items()}
+    vis = {}
+    for name, lab in (("bottle", "bottle"), ("glass", "glass")):
+        vis[name] = all(int(np.count_nonzero(s == inv[lab])) >= min_px for s in segs)
+    vis["hand"] = True
+    return vis
+
+
+def run(n: int, seed: int = 0, purpose: str = "bench", progress=None) -> Score:
+    from assistbot.vision.capture import StereoCapture
+    from assistbot.vision.pipeline import Vision
+    from assistbot.vision.scenes import SceneSampler, pose
+    from assistbot.world import PAPER_ARRANGEMENTS, build_world
+
+    vision = Vision()
+    world = build_world(PAPER_ARRANGEMENTS["fig3"], seed)
+    sampler = SceneSampler(seed, purpose)
+    score = Score()
+    with StereoCapture(world.model) as cap:
+        for i in range(n):
+            lab = pose(world, sampler.sample())
+            f = cap.grab(world.data)
+            vis = visibility(cap.segmentation(world.data))
+            percept = vision.perceive(f)
+            score.add(percept, lab, vis)
+            score.render_ms.append(f.render_ms)
+            score.process_ms.append(vision.timing.process_ms)
+            if progress:
+                progress(i + 1, n)
+    return score

@@ -1,0 +1,190 @@
+"""Vision: a stereo frame in, a `Percept` (cognition's contract) out; plus the debug overlay.
+
+Each vision tick (10 Hz of simulated time by default) the episode loop does::
+
+    if capture.due(t):
+        frame = capture.grab(world.data)                 # ~2 renders
+        percept = vision.perceive(frame, robot_holding=proprio.holding, robot_tcp=proprio.tcp)
+        percept.robot = RobotPercept(...)                # filled by the robot side
+
+Objects not found (or only partly visible, or in a dropped frame) come out ``seen=False``;
+nothing is carried over from an earlier frame.  An object the robot's own proprioception says
+it holds is reported held: at the gripper's TCP (from the robot's kinematics), zone "RWS",
+with its state from the pixels when it can be seen, else ``seen=False``.
+"""
+
+from __future__ import annotations
+
+import time
+from dataclasses import dataclass
+
+import cv2
+import numpy as np
+
+from assistbot.cognition.percept import HandPercept, ObjectPercept, Percept
+from assistbot.task import OBJECT_STATES
+from assistbot.vision import library
+from assistbot.vision.capture import StereoFrame
+from assistbot.vision.detect import Detections, Detector
+from assistbot.world.layout import zone_of
+
+HELD_OUT_X = -0.20          # a raised hand beyond this x (toward the robot) is held out
+HELD_OUT_Z = 0.14
+IN_HAND_XY = 0.10           # a grasping hand this close (m, horizontally) to an object holds it
+
+
+def _unseen(name: str) -> ObjectPercept:
+    """Not seen this frame (state/position are placeholders that cognition ignores when seen=False)."""
+    return ObjectPercept(name, "HWS", OBJECT_STATES[name][0], (0.0, 0.0, 0.0), 0.0, False)
+
+
+@dataclass
+class Timing:
+    render_ms: float = 0.0
+    process_ms: float = 0.0
+
+
+class Vision:
+    """Segmentation + template matching + triangulation -> Percept (see module docstring)."""
+
+    def __init__(self, root=None) -> None:
+        self.classifiers, self.calibration = library.load(root)
+        self.detector = Detector(self.calibration)
+        self.last: Detections | None = None
+        self.timing = Timing()
+
+    def perceive(self, frame: StereoFrame, robot_holding: str | None = None, robot_tcp=None) -> Percept:
+        t0 = time.perf_counter()
+        p = Percept(t=frame.t)
+        if frame.dropped or frame.left is None:
+            for o in ("bottle", "glass"):
+                p.objects[o] = _unseen(o)
+            p.hand = HandPercept(seen=False, confidence=0.0)
+            self.last = None
+            return p
+        det = self.detector(frame.left, frame.right, frame.cams)
+        self.last = det
+        for name in ("bottle", "glass"):
+            d = det.objects[name]
+            if not d.visible or d.crop is None:
+                op = _unseen(name)
+            else:
+                state, conf, _ = self.classifiers[name].classify(d.crop, d.feat)
+                pos = tuple(round(float(v), 4) for v in d.position)
+                op = ObjectPercept(name, zone_of(pos[0]), state, pos, round(conf * min(1.0, d.area_ratio), 3), True)
+            if robot_holding == name:
+                op.zone = "RWS"
+                if robot_tcp is not None:
+                    op.position = tuple(float(v) for v in np.asarray(robot_tcp, float))
+            p.objects[name] = op
+        p.hand = self._hand(det, p)
+        self.timing.process_ms = (time.perf_counter() - t0) * 1000.0
+        self.timing.render_ms = frame.render_ms
+        return p
+
+    def _hand(self, det: Detections, p: Percept) -> HandPercept:
+        h = det.hand
+        if not h.visible:
+            return HandPercept(seen=False, confidence=0.0)
+        posture, conf, _ = self.classifiers["hand"].classify(h.crop, h.geo)
+        X = h.position
+        seen_objs = {n: np.array(o.position) for n, o in p.objects.items() if o.seen}
+        hp = HandPercept(posture=posture, position=tuple(round(float(v), 4) for v in X), confidence=round(conf, 3))
+        if seen_objs:
+            near = min(seen_objs, key=lambda n: np.linalg.norm(seen_objs[n][:2] - X[:2]))
+            if posture in ("grasp_ag", "grasp_sg") and np.linalg.norm(seen_objs[near][:2] - X[:2]) < IN_HAND_XY + 0.05:
+                hp.object_in_hand = near
+            if posture in ("reach", "grasp_ag", "grasp_sg"):
+                hp.directed_at = near
+            if posture == "pointing":
+                d = X[:2] - h.proximal[:2]
+                d = d / max(1e-6, float(np.linalg.norm(d)))
+                def off(n):
+                    v = seen_objs[n][:2] - X[:2]
+                    along = float(v @ d)
+                    return abs(float(v[0] * d[1] - v[1] * d[0])) if along > -0.05 else 9.0
+                hp.pointed_at = min(seen_objs, key=off)
+        hp.held_out = bool(X[0] > HELD_OUT_X and X[2] > HELD_OUT_Z and posture in ("grasp_ag", "grasp_sg", "open_palm_request"))
+        if hp.object_in_hand and hp.held_out:
+            p.objects[hp.object_in_hand].zone = "HWS" if X[0] < 0 else "RWS"
+        return hp
+
+    # ------------------------------------------------------------------ debug view
+    def overlay(self, frame: StereoFrame, percept: Percept, scale: int = 2) -> np.ndarray:
+        """The left image with segmentation masks tinted, blobs boxed and the percept written on it (RGB)."""
+        if frame.left is None:
+            img = np.zeros((frame.cams[0].height, frame.cams[0].width, 3), np.uint8)
+            img = cv2.resize(img, None, fx=scale, fy=scale)
+            cv2.putText(img, f"t={frame.t:.1f}s frame dropped: nothing seen", (8, 20), cv2.FONT_HERSHEY_SIMPLEX, 0.5, (255, 255, 255), 1)
+            return img
+        img = frame.left.copy()
+        tint = {"bottle": (0, 255, 0), "stopper": (255, 0, 0), "glass": (0, 255, 255), "liquid": (200, 0, 255), "skin": (255, 160, 0)}
+        if self.last is not None and self.last.masks is not None:
+            for part, m in self.last.masks[0].items():
+                sel = m > 0
+                img[sel] = (0.5 * img[sel] + 0.5 * np.array(tint[part])).astype(np.uint8)
+        img = cv2.resize(img, None, fx=scale, fy=scale, interpolation=cv2.INTER_NEAREST)
+        cam = frame.cams[0]
+        font = cv2.FONT_HERSHEY_SIMPLEX
+        for name, o in percept.objects.items():
+            d = self.last.objects.get(name) if self.last else None
+            if d is not None and d.blobs[0] is not None:
+                x, y, w, h = d.blobs[0].bbox
+                col = (255, 255, 255) if o.seen else (128, 128, 128)
+                cv2.rectangle(img, (x * scale, y * scale), ((x + w) * scale, (y + h) * scale), col, 1)
+                if d.crop is not None:
+                    t = cv2.resize((np.clip(d.crop, 0, 1) * 255).astype(np.uint8), None, fx=scale, fy=scale)
+                    th, tw = t.shape
+                    yy, xx = max(0, y * scale - th - 2), min(img.shape[1] - tw, (x + w) * scale + 2)
+                    img[yy:yy + th, xx:xx + tw] = t[..., None]
+            if o.seen:
+                uv = cam.project(np.array(o.position))[0]
+                if np.all(np.isfinite(uv)):
+                    u, v = int(uv[0] * scale), int(uv[1] * scale)
+                    cv2.circle(img, (u, v), 3, (255, 0, 0), -1)
+                    cv2.putText(img, f"{name} {o.state} {o.zone} {o.confidence:.2f}", (u - 40, v + 14), font, 0.4, (0, 0, 0), 1)
+        hnd = percept.hand
+        if hnd.seen:
+            uv = cam.project(np.array(hnd.position))[0]
+            if np.all(np.isfinite(uv)):
+                u, v = int(uv[0] * scale), int(uv[1] * scale)
+                cv2.drawMarker(img, (u, v), (255, 0, 255), cv2.MARKER_CROSS, 10, 2)
+                rel = " ".join(f"{k}={getattr(hnd, k)}" for k in ("object_in_hand", "pointed_at") if getattr(hnd, k))
+                cv2.putText(img, f"hand {hnd.posture} {hnd.confidence:.2f}{' held out' if hnd.held_out else ''} {rel}", (u - 60, max(12, v - 8)), font, 0.4, (0, 0, 0), 1)
+        cv2.putText(img, f"t={frame.t:.1f}s vision {self.timing.process_ms:.1f} ms", (6, img.shape[0] - 8), font, 0.45, (255, 255, 255), 1)
+        return img
+
+
+# ---------------------------------------------------------------------------- building the library
+def build_library(seed: int = 0, n_scenes: int = 240, root=None, progress=None) -> list:
+    """Calibrate, render library scenes, and write prototypes + examples to assets/templates/."""
+    from assistbot.vision.calibration import calibrate
+    from assistbot.vision.capture import StereoCapture
+    from assistbot.vision.scenes import POSTURES, SceneSampler, pose
+    from assistbot.world import PAPER_ARRANGEMENTS, build_world
+
+    cal = calibrate(seed)
+    det = Detector(cal)
+    world = build_world(PAPER_ARRANGEMENTS["fig3"], seed)
+    sampler = SceneSampler(seed, "library")
+    data = {k: ([], [], []) for k in library.KINDS}
+    with StereoCapture(world.model) as cap:
+        for i in range(n_scenes):
+            lab = pose(world, sampler.sample(POSTURES[i % len(POSTURES)]))
+            f = cap.grab(world.data)
+            d = det(f.left, f.right, f.cams)
+            for name in ("bottle", "glass"):
+                o = d.objects[name]
+                if o.visible and o.crop is not None:
+                    data[name][0].append(o.crop)
+                    data[name][1].append(o.feat)
+                    data[name][2].append(lab.objects[name]["state"])
+            if d.hand.visible:
+                data["hand"][0].append(d.hand.crop)
+                data["hand"][1].append(d.hand.geo)
+                data["hand"][2].append(lab.posture)
+            if progress:
+                progress(i + 1, n_scenes)
+    clfs = {k: library.build_classifier(k, *v, seed=seed) for k, v in data.items()}
+    meta = {"seed": seed, "scenes": n_scenes, "examples": {k: len(v[2]) for k, v in data.items()}}
+    return library.save(root or library.ROOT, clfs, cal, meta)

@@ -1,0 +1,276 @@
+"""Labelled scenes for calibration, the template library, tests and the accuracy benchmark.
+
+`SceneSampler(seed)` draws random `SceneSpec`s: an arrangement with random positions in the
+zones, a head pan/tilt, and a hand posture of the human ("none" at rest, "reach" toward an
+object, "grasp_ag"/"grasp_sg" on an object standing, lifted or held out toward the robot,
+"open_palm_request", "pointing" at an object).  `pose(world, spec)` puts the scene in that
+configuration kinematically (qpos + forward kinematics, no physics: a posture is a still
+image) and returns its `Labels`, taken from WorldState and from the spec: labels are for
+scoring and for building the library, never for inference.
+
+Seed streams keep the sets apart: the template library and the calibration use
+``purpose="library"``, tests and the benchmark ``purpose="test"``/``"bench"``, so that no
+frame used to build templates is ever scored.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import mujoco
+import numpy as np
+
+from assistbot.human.arm import grip_orientation
+from assistbot.human.behaviours import GRASP_HEIGHT, HOLD_OUT, REST
+from assistbot.world import HAND_POSTURES, HUMAN_ARM_JOINTS, HUMAN_HAND_JOINTS, layout
+from assistbot.world.arrangement import Arrangement, Placement
+from assistbot.world.scripted import ik
+
+POSTURES = ("none", "reach", "grasp_ag", "grasp_sg", "open_palm_request", "pointing")
+_PURPOSE = {"library": 1, "test": 2, "bench": 3, "calibrate": 4}
+#: finger posture (world.HAND_POSTURES) per perceived hand posture
+_FINGERS = {"none": "open", "reach": "open", "grasp_ag": "ag", "grasp_sg": "sg", "open_palm_request": "request", "pointing": "point"}
+HAND_X_MAX = -0.03          # the human's grasp site never goes further toward the robot
+
+
+@dataclass
+class SceneSpec:
+    arrangement: Arrangement
+    head: tuple[float, float]                 # pan, tilt (rad)
+    posture: str = "none"
+    target: str | None = None                 # object reached / grasped / pointed at
+    variant: str = "table"                    # grasp: "table", "lifted", "held_out"
+    jitter: tuple[float, float, float] = (0.0, 0.0, 0.0)
+    reach_fraction: float = 0.6
+    robot_holds: str | None = None            # object placed in the robot's gripper (tests)
+
+
+@dataclass
+class Labels:
+    """Ground truth of one posed scene (table frame, metres)."""
+
+    objects: dict[str, dict] = field(default_factory=dict)   # name -> state, zone, position, held_by
+    posture: str = "none"
+    hand_position: tuple[float, float, float] = (0.0, 0.0, 0.0)
+    object_in_hand: str | None = None
+    held_out: bool = False
+    pointed_at: str | None = None
+    directed_at: str | None = None
+
+
+def _random_position(rng, name: str, zone: str) -> tuple[float, float]:
+    r = layout.OBJECT_RADIUS[name]
+    xmax = layout.TABLE_HALF_X - r - layout.EDGE_MARGIN - 0.05
+    inner = r + layout.MIDLINE_MARGIN + 0.03
+    x = rng.uniform(inner, xmax - 0.02)
+    y = rng.uniform(-0.30, 0.30)
+    return (-x if zone == "HWS" else x, y)
+
+
+class SceneSampler:
+    """Random labelled-scene specs from one seed stream (see module docstring)."""
+
+    def __init__(self, seed: int = 0, purpose: str = "bench") -> None:
+        self.rng = np.random.default_rng([_PURPOSE[purpose], int(seed)])
+
+    def arrangement(self) -> Arrangement:
+        rng = self.rng
+        for _ in range(200):
+            bz, gz = rng.choice(layout.ZONES), rng.choice(layout.ZONES)
+            arr = Arrangement(
+                Placement(str(bz), str(rng.choice(layout.BOTTLE_STATES)), _random_position(rng, "bottle", str(bz))),
+                Placement(str(gz), str(rng.choice(layout.GLASS_STATES)), _random_position(rng, "glass", str(gz))))
+            try:
+                arr.validate()
+            except Exception:  # noqa: BLE001 - overlapping draw: draw again
+                continue
+            stopper = np.array(layout.STOPPER_PARK)
+            if min(np.linalg.norm(np.array(arr.position(o)) - stopper) for o in ("bottle", "glass")) < 0.12:
+                continue  # keep the removed stopper's place clear of the objects
+            return arr
+        raise RuntimeError("could not draw a valid arrangement")
+
+    def sample(self, posture: str | None = None) -> SceneSpec:
+        rng = self.rng
+        arr = self.arrangement()
+        head = (float(rng.uniform(-0.2, 0.2)), float(rng.uniform(0.65, 0.85)))
+        posture = posture or str(rng.choice(POSTURES))
+        hws = [o for o in ("bottle", "glass") if getattr(arr, o).zone == "HWS"]
+        target, variant = None, "table"
+        if posture in ("reach", "grasp_ag", "grasp_sg"):
+            if not hws:   # the human reaches only into the HWS: move one object there
+                o = str(rng.choice(["bottle", "glass"]))
+                return self._with_object_in_hws(arr, o, head, posture)
+            target = str(rng.choice(hws))
+        if posture in ("grasp_ag", "grasp_sg"):
+            st = getattr(arr, target).state
+            variant = str(rng.choice(["table", "lifted", "held_out"])) if st != "inverted" else "table"
+        if posture == "pointing":
+            target = str(rng.choice(["bottle", "glass"]))
+        jitter = tuple(float(v) for v in rng.uniform(-0.03, 0.03, 3))
+        return SceneSpec(arr, head, posture, target, variant, jitter, float(rng.uniform(0.35, 0.75)))
+
+    def _with_object_in_hws(self, arr: Arrangement, o: str, head, posture: str) -> SceneSpec:
+        for _ in range(50):
+            p = getattr(arr, o)
+            moved = Placement("HWS", p.state, _random_position(self.rng, o, "HWS"))
+            new = Arrangement(moved, arr.glass) if o == "bottle" else Arrangement(arr.bottle, moved)
+            try:
+                new.validate()
+                break
+            except Exception:  # noqa: BLE001
+                continue
+        else:
+            raise RuntimeError("could not place an object in the HWS")
+        spec = self.sample.__func__  # noqa: F841 - keep linters quiet about recursion below
+        st = getattr(new, o).state
+        variant = str(self.rng.choice(["table", "lifted", "held_out"])) if posture.startswith("grasp") and st != "inverted" else "table"
+        jitter = tuple(float(v) for v in self.rng.uniform(-0.03, 0.03, 3))
+        return SceneSpec(new, head, posture, o, variant, jitter, float(self.rng.uniform(0.35, 0.75)))
+
+
+# ---------------------------------------------------------------------------- posing
+def _qadr(world, joint: str) -> int:
+    return int(world.model.jnt_qposadr[world.model.joint(joint).id])
+
+
+def _move_free(world, body: str, pos, quat=None) -> None:
+    """Move a free body (and, for a full glass / the bottle's liquid, the particles in it) rigidly."""
+    m, d = world.model, world.data
+    qa = m.jnt_qposadr[m.body_jntadr[world.body_id[body]]]
+    delta = np.asarray(pos, float) - d.qpos[qa:qa + 3]
+    if body in ("bottle", "glass"):
+        pts = d.qpos[world.particle_qadr[:, None] + np.arange(3)]
+        base = d.qpos[qa:qa + 3]
+        inside = np.hypot(pts[:, 0] - base[0], pts[:, 1] - base[1]) < 0.045
+        inside &= (pts[:, 2] > base[2] - 0.01) & (pts[:, 2] < base[2] + 0.2)
+        for i in np.flatnonzero(inside):
+            d.qpos[world.particle_qadr[i]:world.particle_qadr[i] + 3] += delta
+    if body == "bottle" and d.eq_active[world.eq_stopper]:
+        sa = m.jnt_qposadr[m.body_jntadr[world.body_id["stopper"]]]
+        d.qpos[sa:sa + 3] += delta
+    d.qpos[qa:qa + 3] = pos
+    if quat is not None:
+        d.qpos[qa + 3:qa + 7] = quat
+
+
+def _set_arm(world, target, R) -> None:
+    q = ik(world, "human_r_grasp", target, R, joints=HUMAN_ARM_JOINTS, iters=200)
+    for j, v in q.items():
+        world.data.qpos[_qadr(world, j)] = v
+
+
+def _set_fingers(world, posture: str) -> None:
+    for j, v in zip(HUMAN_HAND_JOINTS, HAND_POSTURES[posture]):
+        world.data.qpos[_qadr(world, j)] = v
+
+
+def pose(world, spec: SceneSpec) -> Labels:
+    """Put `world` into `spec` (kinematically) and return the scene's labels."""
+    m, d = world.model, world.data
+    world.arrangement = spec.arrangement
+    world.reset()
+    d.qpos[_qadr(world, "robot_head_pan")] = spec.head[0]
+    d.qpos[_qadr(world, "robot_head_tilt")] = spec.head[1]
+    jit = np.asarray(spec.jitter)
+    held_out = False
+    in_hand = None
+    tz = layout.TABLE_Z
+    if spec.posture in ("grasp_ag", "grasp_sg"):
+        grip = spec.posture[-2:]
+        o = spec.target
+        base = d.xpos[world.body_id[o]].copy()
+        upright = not (o == "glass" and spec.arrangement.glass.state == "inverted")
+        if spec.variant == "lifted":
+            base = base + np.array([0, 0, 0.07]) + np.array([jit[0], jit[1], 0])
+        elif spec.variant == "held_out":
+            base = np.array([HOLD_OUT[0] - 0.06, HOLD_OUT[1] + jit[1], 0.88]) + np.array([jit[0], 0, 0.5 * jit[2]])
+            held_out = True
+        if spec.variant != "table":
+            _move_free(world, o, base)
+            mujoco.mj_kinematics(m, d)
+        h = GRASP_HEIGHT[(o, grip)]
+        target = base + np.array([0, 0, h if upright else layout.GLASS_HEIGHT - h])
+        R = grip_orientation(grip, target)
+        if grip == "sg":
+            target = target - 0.8 * layout.OBJECT_RADIUS[o] * R[:, 2] * 0  # grasp site at the object's axis
+        _set_arm(world, target, R)
+        _set_fingers(world, grip)
+        in_hand = o
+    elif spec.posture == "reach":
+        o = spec.target
+        base = d.xpos[world.body_id[o]].copy()
+        grip = "ag" if spec.reach_fraction > 0.55 else "sg"
+        goal = base + np.array([0, 0, GRASP_HEIGHT[(o, grip)] + 0.06])
+        p = REST + spec.reach_fraction * (goal - REST) + 0.5 * jit
+        p[0] = min(p[0], HAND_X_MAX)
+        _set_arm(world, p, grip_orientation(grip, goal))
+        _set_fingers(world, "open")
+    elif spec.posture == "open_palm_request":
+        p = HOLD_OUT + jit
+        _set_arm(world, p, grip_orientation("request", p))
+        _set_fingers(world, "request")
+        held_out = True
+    elif spec.posture == "pointing":
+        o = spec.target
+        tgt = d.xpos[world.body_id[o]].copy() + np.array([0, 0, 0.10])
+        hand0 = REST
+        dvec = tgt - hand0
+        dvec[2] = 0
+        dist = 0.15 + 0.05 * (jit[0] / 0.03)
+        p = tgt - dist * dvec / np.linalg.norm(dvec) + np.array([0, jit[1], 0.05 + jit[2]])
+        p[0] = min(p[0], HAND_X_MAX)
+        _set_arm(world, p, grip_orientation("point", tgt))
+        _set_fingers(world, "point")
+    else:  # none: hand near the resting place
+        p = REST + jit * np.array([1.0, 1.0, 0.5])
+        _set_arm(world, p, grip_orientation("ag", p + np.array([0.2, 0, 0])))
+        _set_fingers(world, "open")
+    if spec.robot_holds:
+        _robot_hold(world, spec.robot_holds)
+    mujoco.mj_forward(m, d)
+    return labels_of(world, spec, in_hand, held_out)
+
+
+def _robot_hold(world, o: str) -> None:
+    """Put the robot's TCP at a point in the RWS and the object in its closed gripper."""
+    m, d = world.model, world.data
+    target = np.array([0.28, -0.02, layout.TABLE_Z + 0.22])
+    joints = tuple(f"robot_j{i}" for i in range(1, 8))
+    q = ik(world, "robot_tcp", target, None, joints=joints, iters=300)
+    for j, v in q.items():
+        d.qpos[_qadr(world, j)] = v
+    for f in (1, 2, 3):
+        for part in ("prox", "dist"):
+            name = f"robot_f{f}_{part}"
+            try:
+                d.qpos[_qadr(world, name)] = 0.9 if part == "prox" else 0.5
+            except KeyError:
+                pass
+    mujoco.mj_kinematics(m, d)
+    tcp = d.site_xpos[world.site_id["robot_tcp"]].copy()
+    mid = 0.09 if o == "bottle" else 0.05
+    _move_free(world, o, tcp - np.array([0, 0, mid]))
+
+
+def labels_of(world, spec: SceneSpec, in_hand: str | None, held_out: bool) -> Labels:
+    st = world.state()
+    lab = Labels(posture=spec.posture, object_in_hand=in_hand, held_out=held_out)
+    for o in ("bottle", "glass"):
+        os_ = st.objects[o]
+        p = np.array(os_.pos)
+        p[2] -= layout.TABLE_Z
+        if os_.inverted:     # the base it stands on is the rim side: GLASS_HEIGHT below the body origin
+            p[2] -= layout.GLASS_HEIGHT
+        state = spec.arrangement.bottle.state if o == "bottle" else spec.arrangement.glass.state
+        held = "human" if in_hand == o else ("robot" if spec.robot_holds == o else None)
+        zone = "RWS" if held == "robot" else ("HWS" if held == "human" and not held_out else layout.zone_of(p[0]))
+        lab.objects[o] = {"state": state, "zone": zone, "position": tuple(float(v) for v in p), "held_by": held}
+    hp = world.site_pos("human_r_grasp")
+    hp[2] -= layout.TABLE_Z
+    lab.hand_position = tuple(float(v) for v in hp)
+    if spec.posture == "pointing":
+        lab.pointed_at = spec.target
+    if spec.posture in ("reach", "grasp_ag", "grasp_sg"):
+        lab.directed_at = spec.target
+    return lab

@@ -1,0 +1,96 @@
+"""Vision: cameras from the model, dropped frames, held objects, the template command, accuracy on a seeded set."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from assistbot.cli import main
+from assistbot.errors import UserError
+from assistbot.vision import CaptureConfig, StereoCapture, Vision
+from assistbot.vision.camera import CameraModel, triangulate
+from assistbot.vision.evaluate import run as evaluate
+from assistbot.vision.scenes import SceneSampler, SceneSpec, pose
+from assistbot.world import PAPER_ARRANGEMENTS, build_world
+
+# Accuracy goals of issue 8 and the margin this test allows (the benchmark measures the full
+# set; see the closing note for where vision still falls short of the goals themselves).
+GOAL_OBJECT, GOAL_POSTURE, GOAL_MEDIAN_CM = 0.98, 0.95, 2.0
+MARGIN_OBJECT, MARGIN_POSTURE, MARGIN_MEDIAN_CM = 0.10, 0.20, 1.0
+
+
+@pytest.fixture(scope="module")
+def world():
+    return build_world(PAPER_ARRANGEMENTS["fig3"], 0)
+
+
+def test_cameras_come_from_the_model_and_the_head_joints(world):
+    m, d = world.model, world.data
+    d.qpos[m.jnt_qposadr[m.joint("robot_head_pan").id]] = 0.3
+    import mujoco
+    mujoco.mj_forward(m, d)
+    L = CameraModel.from_data(m, d, "head_cam_left", 320, 240)
+    R = CameraModel.from_data(m, d, "head_cam_right", 320, 240)
+    assert np.isclose(np.linalg.norm(L.C - R.C), 0.12, atol=1e-6)
+    assert np.isclose(L.K[1, 1], 120 / np.tan(np.radians(m.cam_fovy[m.camera("head_cam_left").id]) / 2))
+    X = np.array([[-0.2, 0.1, 0.05], [0.15, -0.2, 0.0]])
+    Y = triangulate(L, R, L.project(X), R.project(X))
+    assert np.allclose(X, Y, atol=1e-9)
+    world.reset()
+
+
+def test_capture_rate_is_simulated_time(world):
+    with StereoCapture(world.model, CaptureConfig(rate=10.0)) as cap:
+        ticks = [t for t in np.arange(0, 1.0, 0.02) if cap.due(float(t))]
+    assert len(ticks) == 10
+
+
+def test_dropped_frame_is_not_seen(world):
+    vision = Vision()
+    with StereoCapture(world.model, CaptureConfig(dropout=1.0, seed=1)) as cap:
+        f = cap.grab(world.data)
+    p = vision.perceive(f)
+    assert f.dropped and f.left is None
+    assert not p.objects["bottle"].seen and not p.objects["glass"].seen and not p.hand.seen
+    p.validate()
+
+
+def test_object_in_the_robot_gripper_is_held_or_unseen_not_misplaced(world):
+    spec = SceneSampler(5, "test").sample("none")
+    spec.robot_holds = "glass"
+    lab = pose(world, spec)
+    tcp = world.site_pos("robot_tcp")
+    tcp[2] -= 0.75
+    vision = Vision()
+    with StereoCapture(world.model) as cap:
+        p = vision.perceive(cap.grab(world.data), robot_holding="glass", robot_tcp=tcp)
+    g = p.objects["glass"]
+    assert g.zone == "RWS"
+    if g.seen:
+        assert np.linalg.norm(np.array(g.position) - tcp) < 0.05
+    assert lab.objects["glass"]["held_by"] == "robot"
+
+
+def test_missing_library_is_a_user_error_naming_the_command(tmp_path, capsys):
+    with pytest.raises(UserError, match="assistbot templates"):
+        Vision(root=tmp_path)
+    assert main(["templates", "--check", "--out", str(tmp_path)]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and "assistbot templates" in err[0]
+
+
+def test_templates_command_is_deterministic(tmp_path):
+    a, b = tmp_path / "a", tmp_path / "b"
+    assert main(["templates", "--scenes", "18", "--out", str(a)]) == 0
+    assert main(["templates", "--scenes", "18", "--out", str(b)]) == 0
+    names = sorted(p.name for p in a.iterdir())
+    assert names == sorted(p.name for p in b.iterdir()) and "index.json" in names
+    for n in names:
+        assert (a / n).read_bytes() == (b / n).read_bytes(), n
+
+
+def test_seeded_labelled_set_meets_goals_minus_margin():
+    s = evaluate(60, seed=7, purpose="test")
+    assert s.accuracy(("bottle", "glass")) >= GOAL_OBJECT - MARGIN_OBJECT, s.report()
+    assert s.accuracy("hand") >= GOAL_POSTURE - MARGIN_POSTURE, s.report()
+    assert np.median(s.pos_err) * 100 <= GOAL_MEDIAN_CM + MARGIN_MEDIAN_CM, s.report()
