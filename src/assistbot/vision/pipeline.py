@@ -185,6 +185,8 @@ def build_library(seed: int = 0, n_scenes: int = 240, root=None, progress=None) 
                 data["hand"][2].append(lab.posture)
             if progress:
                 progress(i + 1, n_scenes)
-    clfs = {k: library.build_classifier(k, *v, seed=seed) for k, v in data.items()}
+    # the stopper-on-top and liquid fractions are the decisive shape features: weight them up
+    weights = {"bottle": [1, 1, 3, 3], "glass": [1, 1, 1, 3, 2], "hand": None}
+    clfs = {k: library.build_classifier(k, *v, seed=seed, weights=weights[k]) for k, v in data.items()}
     meta = {"seed": seed, "scenes": n_scenes, "examples": {k: len(v[2]) for k, v in data.items()}}
     return library.save(root or library.ROOT, clfs, cal, meta)
