@@ -1,71 +1,267 @@
-"""Robot primitives in the physics (no cognition): the effect happens, safely, from two placements."""
+"""Robot primitives in the world's physics (no cognition): the effect happens, safely, from two placements.
+
+Every run checks the issue's safety figures: the arm stays >= 5 cm from the human's head and
+torso, within its joint ranges, and never deeper into the HWS than the hand-over zone.
+Targets come from ground truth here (a stand-in for perception).
+"""
 
 from __future__ import annotations
 
+import mink
 import numpy as np
 import pytest
 
+from assistbot.human.controller import HumanController
+from assistbot.robot import primitives as P
+from assistbot.robot.actions import ACTION_PRIMITIVES, NOT_YET_PHYSICAL
 from assistbot.robot.controller import HANDOVER_DEPTH, RobotController
-from assistbot.robot.primitives import ReachAndGrasp, Request, Retract, Status, TurnGlass
-from assistbot.robot.sim import CONTROL_DT, Bench, Placement
+from assistbot.robot.primitives import Status
+from assistbot.robot.sim import CONTROL_DT, body_xy, run
+from assistbot.task.drinking import ROBOT_ACTIONS
+from assistbot.world import Arrangement, build_world
 
 
-def run(bench: Bench, prim, target=lambda b: None, seconds: float = 25.0):
-    worst = {"human": 1e9, "min_x": 1e9, "limits": True}
-    prim.start(target(bench))
+def make(bottle: str, glass: str):
+    w = build_world(Arrangement.from_options(bottle, glass), seed=0)
+    return w, RobotController(w.model, w.data)
+
+
+def assert_safe(s):
+    assert s.human >= 0.05, s
+    assert s.min_x >= -HANDOVER_DEPTH, s
+    assert s.limits, s
+
+
+def upright(w, obj):
+    return w.data.xmat[w.body_id[obj]][8] > 0.98
+
+
+def settle(w, seconds=1.0, human=None):
     for _ in range(int(seconds / CONTROL_DT)):
-        pr = prim.tick(CONTROL_DT, target(bench))
-        bench.step()
-        worst["human"] = min(worst["human"], bench.min_human_distance())
-        worst["min_x"] = min(worst["min_x"], bench.robot_min_x())
-        worst["limits"] &= bench.arm_within_limits()
-        if pr.status is not Status.RUNNING:
-            break
-    return pr, worst
+        if human is not None:
+            human.tick(w.time)
+        w.step(10)
 
 
-def assert_safe(worst):
-    assert worst["human"] >= 0.05
-    assert worst["min_x"] >= -HANDOVER_DEPTH
-    assert worst["limits"]
-
-
-@pytest.mark.parametrize("xy", [(0.15, 0.10), (0.22, -0.15)])
+# --------------------------------------------------------------------------- turn, place, pour
+@pytest.mark.parametrize("xy", ["0.15,0.10", "0.22,-0.15"])
 def test_turn_glass_ends_upright_in_rws(xy):
-    bench = Bench(Placement(glass=xy, bottle=(0.25, 0.32), glass_inverted=True))
-    robot = RobotController(bench.model, bench.data)
-    pr, worst = run(bench, TurnGlass(robot), lambda b: tuple(b.body_pos("glass")[:2]))
+    w, robot = make("HWS:closed", f"RWS:inverted@{xy}")
+    pr, s = run(w, P.TurnGlass(robot), body_xy(w, "glass"))
     assert pr.status is Status.SUCCEEDED, pr.reason
-    assert bench.body_up("glass")[2] > 0.98
-    assert bench.body_pos("glass")[0] > 0.04
-    assert bench.body_pos("glass")[2] < 0.76
-    assert_safe(worst)
+    settle(w, 0.5)
+    assert upright(w, "glass")
+    assert w.state().objects["glass"].zone == "RWS"
+    assert w.data.xpos[w.body_id["glass"]][2] < 0.76  # standing on the table
+    assert_safe(s)
 
 
-def test_unreachable_target_fails_with_reason_in_bounded_time():
-    bench = Bench(Placement(glass=(0.20, -0.12)))
-    robot = RobotController(bench.model, bench.data)
-    pr, worst = run(bench, ReachAndGrasp(robot, "glass"), lambda b: (-0.35, -0.50), seconds=15.0)
-    assert pr.status is Status.FAILED
-    assert "reach" in pr.reason
-    assert pr.t < 10.0
-    assert_safe(worst)
+@pytest.mark.parametrize("obj, start, spot", [("glass", "0.20,-0.12", (0.25, 0.05)), ("bottle", "0.15,0.20", (0.22, -0.05))])
+def test_place_in_rws_puts_the_object_down_upright_at_the_spot(obj, start, spot):
+    w, robot = make(*( (f"RWS:closed@{start}", "HWS:empty") if obj == "bottle" else ("HWS:closed", f"RWS:empty@{start}")))
+    pr, s = run(w, P.PlaceInRWS(robot, obj, spot=spot), body_xy(w, obj))
+    assert pr.status is Status.SUCCEEDED, pr.reason
+    settle(w, 0.5)
+    p = w.data.xpos[w.body_id[obj]]
+    assert np.hypot(p[0] - spot[0], p[1] - spot[1]) < 0.03
+    assert upright(w, obj) and p[2] < 0.76
+    assert_safe(s)
 
 
+@pytest.mark.parametrize("bottle, glass", [("0.20,0.12", "0.20,-0.12"), ("0.12,-0.20", "0.24,0.05")])
+def test_pour_fills_the_upright_glass(bottle, glass):
+    w, robot = make(f"RWS:open@{bottle}", f"RWS:empty@{glass}")
+    prim = P.Pour(robot, "bottle", locate=lambda name: body_xy(w, name)())
+    pr, s = run(w, prim, body_xy(w, "bottle"))
+    assert pr.status is Status.SUCCEEDED, pr.reason
+    settle(w, 0.5)
+    liq = w.state().liquid
+    assert liq.in_glass >= 0.9 * liq.total, w.state().summary()
+    assert liq.spilled < 0.1 * liq.total, w.state().summary()
+    assert upright(w, "glass") and upright(w, "bottle")
+    assert w.state().objects["bottle"].zone == "RWS"
+    assert_safe(s)
+
+
+def test_pour_without_a_seen_glass_fails_with_a_reason():
+    w, robot = make("RWS:open", "RWS:empty")
+    prim = P.Pour(robot, "bottle")  # no locate(): the glass is not seen
+    pr, _ = run(w, prim, body_xy(w, "bottle"), seconds=1.0)
+    assert pr.status is Status.FAILED and "glass" in pr.reason
+
+
+# --------------------------------------------------------------------------- stopper
+@pytest.mark.parametrize("bottle", ["0.20,0.12", "0.14,-0.18"])
+def test_bottle_held_for_the_stopper_lets_a_15N_pull_take_it_off(bottle):
+    """A stand-in hand pulls the stopper up with 15 N while the robot holds the bottle; the world's fit decides."""
+    w, robot = make(f"RWS:closed@{bottle}", "HWS:empty")
+    removed = lambda: not w.data.eq_active[w.eq_stopper]  # noqa: E731 - what the cameras would show
+    prim = P.HoldBottleForStopper(robot, stopper_removed=removed)
+    stopper = w.model.body("stopper").id
+    pulled = []
+
+    def pull(t):
+        holding_out = prim.progress.phase == "hold steady for the stopper"
+        on = holding_out and w.data.eq_active[w.eq_stopper]
+        w.data.xfrc_applied[stopper, 2] = 15.0 if on else 0.0
+        if on:
+            pulled.append(t)
+
+    pr, s = run(w, prim, body_xy(w, "bottle"), each_tick=pull)
+    assert pr.status is Status.SUCCEEDED, pr.reason
+    assert pulled and pulled[-1] - pulled[0] < 0.5  # the fit gave at once under the pull
+    st = w.state()
+    assert st.bottle_open
+    settle(w, 0.5)
+    assert upright(w, "bottle") and w.state().objects["bottle"].zone == "RWS"
+    assert w.state().liquid.in_bottle == w.state().liquid.total
+    assert_safe(s)
+
+
+def test_stopper_hold_times_out_with_a_reason():
+    w, robot = make("RWS:closed", "HWS:empty")
+    prim = P.HoldBottleForStopper(robot, timeout=2.0)
+    pr, s = run(w, prim, body_xy(w, "bottle"), seconds=20)
+    assert pr.status is Status.FAILED and "stopper" in pr.reason
+    assert_safe(s)
+
+
+# --------------------------------------------------------------------------- hand-over to the human
+def _give(w, robot, prim, target, obj, seconds=45.0):
+    """Run a giving primitive; the scripted human starts `take_from_robot` once the object is held out still."""
+    human = HumanController(w, "passive")
+
+    def tick(t):
+        if human.current is None and not human.done and prim.progress.phase.startswith("wait for the human"):
+            human.start("take_from_robot", object=obj)
+        human.tick(t)
+
+    pr, s = run(w, prim, target, seconds=seconds, each_tick=tick)
+    settle(w, 1.0, human)
+    return pr, s, human
+
+
+@pytest.mark.parametrize("glass", ["0.20,-0.12", "0.14,0.08"])
+def test_full_glass_handed_over_ends_in_the_human_hand(glass):
+    w, robot = make("HWS:closed", f"RWS:full@{glass}")
+    prim = P.HandOver(robot, "glass", human_holds=lambda: w.human_holding() == "glass")
+    pr, s, human = _give(w, robot, prim, body_xy(w, "glass"), "glass")
+    assert pr.status is Status.SUCCEEDED, pr.reason
+    st = w.state()
+    assert st.human_holds == "glass" and st.robot_holds is None, st.summary()
+    assert st.liquid.spilled < 0.1 * st.liquid.total, st.summary()
+    assert st.objects["glass"].zone == "HWS"
+    assert_safe(s)
+
+
+@pytest.mark.slow
+def test_bottle_handed_over_ends_in_the_human_hand():
+    w, robot = make("RWS:open@0.18,0.10", "HWS:empty")
+    prim = P.HandOver(robot, "bottle", human_holds=lambda: w.human_holding() == "bottle")
+    pr, s, _ = _give(w, robot, prim, body_xy(w, "bottle"), "bottle")
+    assert pr.status is Status.SUCCEEDED, pr.reason
+    assert w.state().human_holds == "bottle"
+    assert_safe(s)
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("glass", ["0.15,-0.05", "0.22,0.10"])
+def test_turn_and_hand_over_gives_the_human_an_upright_glass(glass):
+    w, robot = make("HWS:closed", f"RWS:inverted@{glass}")
+    prim = P.TurnAndHandOver(robot, "glass", human_holds=lambda: w.human_holding() == "glass")
+    pr, s, _ = _give(w, robot, prim, body_xy(w, "glass"), "glass")
+    assert pr.status is Status.SUCCEEDED, pr.reason
+    assert w.state().human_holds == "glass" and w.data.xmat[w.body_id["glass"]][8] > 0.9
+    assert_safe(s)
+
+
+def test_hand_over_without_a_taker_fails_with_a_reason():
+    w, robot = make("HWS:closed", "RWS:empty@0.18,-0.10")
+    prim = P.HandOver(robot, "glass", timeout=1.0)
+    pr, s = run(w, prim, body_xy(w, "glass"), seconds=20)
+    assert pr.status is Status.FAILED and "did not take" in pr.reason
+    assert_safe(s)
+
+
+# --------------------------------------------------------------------------- receiving from the human
+#: a stand-in hold-out: the human's hand holds the object up near the middle line, in the robot's reach
+STAND_IN_HOLD_OUT_X = -0.02
+
+
+@pytest.mark.parametrize("obj, arrangement", [("bottle", ("HWS:closed@-0.22,-0.12", "RWS:empty")),
+                                              ("glass", ("RWS:closed@0.2,0.2", "HWS:empty@-0.20,0.05"))])
+def test_receive_takes_the_object_from_the_human_hand_and_puts_it_in_rws(obj, arrangement):
+    w, robot = make(*arrangement)
+    human = HumanController(w, "passive")
+    human.start("grasp", object=obj, grip="ag", lift=True)
+    while human.current is not None and w.time < 8.0:
+        settle(w, CONTROL_DT, human)
+    assert w.human_holding() == obj
+    above = 0.17 if obj == "bottle" else 0.085  # the above grip's height over the object's base
+    dur = human.arm.move_to(np.array([STAND_IN_HOLD_OUT_X, -0.05, P.HUMAN_HOLD_OUT_BASE_Z + above]),
+                            human.arm.hand_pose()[1], t=w.time)
+    settle(w, dur + 0.5, human)
+    hand = w.model.site("human_r_grasp").id
+
+    def tick(t):  # the human lets go once the robot's hand holds the object (as hand_to_robot does)
+        if w.human_holding() and w.robot_holding() == obj:
+            w.set_hand_posture("open")
+        human.tick(t)
+
+    prim = P.Receive(robot, "held_out", human_holds=lambda: w.human_holding() is not None)
+    pr, s = run(w, prim, lambda: tuple(w.data.site_xpos[hand][:2]), each_tick=tick)
+    assert pr.status is Status.SUCCEEDED, pr.reason
+    settle(w, 0.5, human)
+    st = w.state()
+    assert st.objects[obj].zone == "RWS" and upright(w, obj), st.summary()
+    assert st.human_holds is None and st.robot_holds is None
+    assert_safe(s)
+
+
+# --------------------------------------------------------------------------- request, retract, failures
 def test_request_holds_open_hand_near_middle_line():
-    bench = Bench(Placement(glass=(0.20, -0.12)))
-    robot = RobotController(bench.model, bench.data)
-    pr, worst = run(bench, Request(robot, "glass"), lambda b: (-0.22, 0.12), seconds=10.0)
+    w, robot = make("HWS:closed", "HWS:empty")
+    pr, s = run(w, P.Request(robot, "glass"), lambda: (-0.22, 0.12), seconds=10.0)
     assert pr.status is Status.SUCCEEDED, pr.reason
-    palm = bench.data.site_xpos[bench.model.site("robot_palm_face").id]
+    palm = w.data.site_xpos[w.model.site("robot_palm_face").id]
     assert abs(palm[0]) < 0.15
     assert robot.gripper.finger_angles().max() < 0.2  # open
-    assert_safe(worst)
+    assert_safe(s)
 
 
 def test_retract_from_home():
-    bench = Bench()
-    robot = RobotController(bench.model, bench.data)
-    pr, worst = run(bench, Retract(robot), seconds=8.0)
+    w, robot = make("HWS:closed", "HWS:empty")
+    pr, s = run(w, P.Retract(robot), seconds=8.0)
     assert pr.status is Status.SUCCEEDED, pr.reason
-    assert_safe(worst)
+    assert_safe(s)
+
+
+def test_unreachable_target_fails_with_reason_in_bounded_time():
+    w, robot = make("HWS:closed", "RWS:empty")
+    pr, s = run(w, P.ReachAndGrasp(robot, "glass"), lambda: (-0.35, -0.50), seconds=15.0)
+    assert pr.status is Status.FAILED
+    assert "reach" in pr.reason
+    assert pr.t < 10.0
+    assert_safe(s)
+
+
+def test_ik_without_solution_is_reported_as_a_failure(monkeypatch):
+    w, robot = make("HWS:closed", "RWS:empty")
+
+    def no_solution(*a, **k):
+        raise mink.NoSolutionFound("daqp")
+
+    monkeypatch.setattr("assistbot.robot.ik.mink.solve_ik", no_solution)
+    pr, _ = run(w, P.ReachAndGrasp(robot, "glass"), body_xy(w, "glass"), seconds=10.0)
+    assert pr.status is Status.FAILED
+    assert "no solution" in pr.reason and pr.t < 5.0
+
+
+def test_every_moving_action_has_a_physical_primitive():
+    assert NOT_YET_PHYSICAL == {}
+    for action in ROBOT_ACTIONS:
+        entry = ACTION_PRIMITIVES[action.name]
+        if action.motion in ("speak", "none"):
+            assert entry is None, action.name
+        else:
+            assert entry is not None, action.name

@@ -1,8 +1,11 @@
-"""`assistbot act ARRANGEMENT ACTION`: run one robot primitive in the physics and write a short mp4.
+"""`assistbot act ARRANGEMENT ACTION`: run one robot action's primitive in the world and write a short mp4.
 
-ARRANGEMENT is "inverted" / "upright" (the glass in the RWS) for now; the
-scenario loader takes over once assistbot.world is in. The target x, y comes
-from ground truth here (a development tool, not the closed loop).
+ARRANGEMENT is a paper arrangement (fig3, fig4, fig5), a scenario YAML file (its
+``objects:``), or ``custom`` with --bottle/--glass (ZONE:STATE[@x,y]). The scripted
+human (passive) stands by and does its part where the action needs one: takes what the
+robot holds out, pulls the stopper of the bottle the robot holds, or holds an object out
+near the middle line for Receive-object. Targets come from ground truth here (a development
+tool, not the closed loop).
 """
 
 from __future__ import annotations
@@ -17,58 +20,115 @@ NAME = "act"
 HELP = "run one robot action's motion primitive from an arrangement and write a short video"
 ORDER = 60
 
+#: the human's grasp site when it holds an object out for Receive-object (the real hold-out is out of the robot's reach)
+STAND_IN_HOLD_OUT = (-0.03, -0.05)
+
 
 def add_arguments(p: argparse.ArgumentParser) -> None:
-    p.add_argument("arrangement", help="inverted | upright (glass in the RWS)")
+    p.add_argument("arrangement", help="fig3 | fig4 | fig5 | SCENARIO.yaml | custom (with --bottle and --glass)")
     p.add_argument("action", help="an AEL action name, e.g. Reach-and-turn-glass")
-    p.add_argument("--glass", default="0.20,-0.12", help="glass table x,y in m (default 0.20,-0.12)")
+    p.add_argument("--bottle", metavar="ZONE:STATE[@x,y]", help="with custom: the bottle, e.g. RWS:open@0.2,0.12")
+    p.add_argument("--glass", metavar="ZONE:STATE[@x,y]", help="with custom: the glass, e.g. RWS:inverted")
     p.add_argument("--out", type=Path, default=Path("render/act"), help="output folder")
-    p.add_argument("--seconds", type=float, default=20.0)
+    p.add_argument("--seconds", type=float, default=45.0, help="simulated time limit")
+
+
+def _arrangement(args):
+    from assistbot.world import PAPER_ARRANGEMENTS, Arrangement
+    from assistbot.world.cli_support import arrangement_from_args
+
+    if args.arrangement in PAPER_ARRANGEMENTS:
+        return PAPER_ARRANGEMENTS[args.arrangement]
+    if args.arrangement == "custom":
+        if not (args.bottle and args.glass):
+            raise UserError("arguments", "--bottle/--glass", "custom needs both, e.g. --bottle RWS:open --glass RWS:empty")
+        return Arrangement.from_options(args.bottle, args.glass)
+    ns = argparse.Namespace(scenario=args.arrangement, bottle=None, glass=None)
+    return arrangement_from_args(ns)
 
 
 def run(args: argparse.Namespace) -> int:
     os.environ.setdefault("MUJOCO_GL", "osmesa")  # before mujoco is imported
     from assistbot.robot.actions import ACTION_PRIMITIVES
 
-    if args.arrangement not in ("inverted", "upright"):
-        raise UserError("arguments", "arrangement", "use inverted or upright")
     if args.action not in ACTION_PRIMITIVES:
         raise UserError("arguments", "action", f"unknown action; use one of {', '.join(ACTION_PRIMITIVES)}")
+    arrangement = _arrangement(args)
     entry = ACTION_PRIMITIVES[args.action]
     if entry is None:
         print(f"{args.action}: does not move the arm")
         return 0
-    try:
-        gx, gy = (float(v) for v in args.glass.split(","))
-    except ValueError:
-        raise UserError("arguments", "--glass", "expected x,y in metres, e.g. 0.20,-0.12") from None
     import imageio.v2 as imageio
-    import mujoco
+    import numpy as np
 
+    from assistbot.human.controller import HumanController
+    from assistbot.robot import primitives as P
     from assistbot.robot.controller import RobotController
-    from assistbot.robot.primitives import Status
-    from assistbot.robot.sim import CONTROL_DT, Bench, Placement
+    from assistbot.robot.sim import body_xy
+    from assistbot.robot.sim import run as run_primitive
+    from assistbot.world import build_world
+    from assistbot.world.render import Renderer
 
-    bench = Bench(Placement(glass=(gx, gy), bottle=(0.25, 0.32), glass_inverted=args.arrangement == "inverted"))
-    robot = RobotController(bench.model, bench.data)
+    world = build_world(arrangement, seed=0)
+    robot = RobotController(world.model, world.data)
+    human = HumanController(world, "passive")
     cls, obj = entry
-    prim = cls(robot, "glass" if obj == "held_out" else obj)
-    target = lambda: tuple(bench.body_pos(prim.object or "glass")[:2])  # noqa: E731
-    renderer = mujoco.Renderer(bench.model, 240, 320)
+    hand = world.model.site("human_r_grasp").id
+    prim = cls(robot, obj,
+               human_holds=lambda: world.human_holding() is not None,
+               locate=lambda name: body_xy(world, name)(),
+               stopper_removed=lambda: not world.data.eq_active[world.eq_stopper])
+    if obj == "held_out":
+        held = "bottle" if arrangement.bottle.zone == "HWS" else "glass"
+        if getattr(arrangement, held).zone != "HWS":
+            raise UserError("arguments", "arrangement", "Receive-object needs the bottle or the glass in the HWS")
+        human.start("grasp", object=held, grip="ag", lift=True)
+        target = lambda: tuple(world.data.site_xpos[hand][:2])  # noqa: E731
+    else:
+        target = body_xy(world, obj)
+
+    state = {"held_out": False}
+
+    def human_part(t: float) -> None:
+        phase = prim.progress.phase
+        if human.current is None and phase.startswith("wait for the human to take") and not human.done:
+            human.start("take_from_robot", object=prim.object)
+        elif human.current is None and phase.startswith("hold steady for the stopper") and not human.done:
+            human.start("pull_stopper")
+        if obj == "held_out":
+            if world.human_holding() and world.robot_holding():
+                world.set_hand_posture("open")
+        human.tick(t)
+
+    renderer = Renderer(world.model, 320, 240)
     args.out.mkdir(parents=True, exist_ok=True)
     path = args.out / f"{args.action}.mp4"
+    frames = {"k": 0}
     try:
         with imageio.get_writer(path, fps=25) as w:
-            prim.start(target())
-            for k in range(int(args.seconds / CONTROL_DT)):
-                pr = prim.tick(CONTROL_DT, target())
-                bench.step()
-                if k % 2 == 0:
-                    renderer.update_scene(bench.data, "scene_cam")
-                    w.append_data(renderer.render())
-                if pr.status is not Status.RUNNING:
-                    break
+            def tick(t: float) -> None:
+                human_part(t)
+                if frames["k"] % 2 == 0:
+                    w.append_data(renderer.rgb(world.data, "scene_cam"))
+                frames["k"] += 1
+
+            if obj == "held_out":  # the human first grasps the object and holds it out near the middle line
+                while world.time < 15.0 and not state["held_out"]:
+                    tick(world.time)
+                    world.step(10)
+                    if human.current is None and world.human_holding():
+                        above = 0.17 if world.human_holding() == "bottle" else 0.085
+                        p = np.array([*STAND_IN_HOLD_OUT, P.HUMAN_HOLD_OUT_BASE_Z + above])
+                        d = human.arm.move_to(p, human.arm.hand_pose()[1], t=world.time)
+                        for _ in range(int((d + 0.5) / 0.02)):
+                            tick(world.time)
+                            world.step(10)
+                        state["held_out"] = True
+            pr, safety = run_primitive(world, prim, target, seconds=args.seconds, each_tick=tick)
     finally:
         renderer.close()
     print(f"{args.action}: {pr.status.value} after {pr.t:.1f} s {pr.reason}; wrote {path}")
+    print(world.state().summary())
+    print(f"safety: {100 * safety.human:.0f} cm from the human's head/torso, hand reached x = {safety.min_x:.3f} m, "
+          f"joint limits {'kept' if safety.limits else 'exceeded at ' + safety.worst_joint}")
     return 0

@@ -1,8 +1,21 @@
 """AEL robot actions (assistbot.task.drinking.ROBOT_ACTIONS) -> motion primitives.
 
-``None`` means the action does not move the arm (speech, waiting). Actions
-whose primitive is not physically working yet map to the closest working
-primitive and are listed in `NOT_YET_PHYSICAL` with the reason.
+``None`` means the action does not move the arm (speech, waiting). Every action
+that moves maps to a primitive that physically achieves it (tests/test_robot_primitives.py).
+Composite actions are one primitive whose phases chain the parts:
+
+  Grasp-hold-bottle-to-remove-cup     HoldBottleForStopper: grasp, hold out at the middle line,
+                                      wait for ``stopper_removed()``, put the bottle back, let go
+  Reach-turn-and-hand-over-glass      TurnAndHandOver: grasp, turn in the air, hold out, release
+                                      when ``human_holds()``
+  Reach-grasp-open-bottle-fill-glass  Pour: grasp the bottle, pour into the glass at
+                                      ``locate("glass")``, put the bottle back
+  Reach-full-glass-to-hand-over       HandOver (glass); Hand-over-bottle: HandOver (bottle)
+  Receive-object                      Receive: grasp what the human holds out, wait until the
+                                      human lets go, put it down in the RWS
+
+The caller constructs ``cls(robot, obj, human_holds=..., locate=..., stopper_removed=...)``
+(see `primitives.Primitive`); every primitive accepts all three callbacks.
 """
 
 from __future__ import annotations
@@ -17,19 +30,13 @@ ACTION_PRIMITIVES: dict[str, tuple[type[P.Primitive], str | None] | None] = {
     "Reach-and-turn-glass": (P.TurnGlass, "glass"),
     "Request-glass": (P.Request, "glass"),
     "Request-bottle": (P.Request, "bottle"),
-    "Grasp-hold-bottle-to-remove-cup": (P.ReachGraspLift, "bottle"),
-    "Reach-turn-and-hand-over-glass": (P.TurnGlass, "glass"),
-    "Reach-grasp-open-bottle-fill-glass": (P.ReachGraspLift, "bottle"),
-    "Reach-full-glass-to-hand-over": (P.ReachGraspLift, "glass"),
-    "Hand-over-bottle": (P.ReachGraspLift, "bottle"),
-    "Receive-object": (P.Request, "held_out"),
+    "Grasp-hold-bottle-to-remove-cup": (P.HoldBottleForStopper, "bottle"),
+    "Reach-turn-and-hand-over-glass": (P.TurnAndHandOver, "glass"),
+    "Reach-grasp-open-bottle-fill-glass": (P.Pour, "bottle"),
+    "Reach-full-glass-to-hand-over": (P.HandOver, "glass"),
+    "Hand-over-bottle": (P.HandOver, "bottle"),
+    "Receive-object": (P.Receive, "held_out"),
 }
 
-NOT_YET_PHYSICAL: dict[str, str] = {
-    "Grasp-hold-bottle-to-remove-cup": "hold pose for the stopper pull not written yet; grasps and lifts the bottle",
-    "Reach-turn-and-hand-over-glass": "hand-over phase not written yet; turns the glass only",
-    "Reach-grasp-open-bottle-fill-glass": "pour phase not written yet; grasps and lifts the bottle",
-    "Reach-full-glass-to-hand-over": "hold-out-and-release not written yet; grasps and lifts the glass",
-    "Hand-over-bottle": "hold-out-and-release not written yet; grasps and lifts the bottle",
-    "Receive-object": "closing on the held-out object not written yet; holds out the open hand",
-}
+#: actions whose primitive does not achieve the action physically yet (action -> reason): none left.
+NOT_YET_PHYSICAL: dict[str, str] = {}

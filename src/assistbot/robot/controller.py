@@ -19,10 +19,15 @@ from assistbot.robot.gripper import Gripper
 from assistbot.robot.ik import ArmIK, IKParams, IKResult
 from assistbot.robot.ik_model import ARM_JOINTS
 
-#: the hand-over zone reaches this far past the middle line into the HWS (m, table x)
-HANDOVER_DEPTH = 0.12
-#: the arm's reach from the shoulder to the TCP (m): 0.30 + 0.30 + 0.138, less a margin off the singular straight arm
-REACH = 0.72
+#: the hand-over zone reaches this far past the middle line into the HWS (m, table x); it contains
+#: the place where the human holds objects out (assistbot.human.behaviours.HOLD_OUT, x = -0.10)
+HANDOVER_DEPTH = 0.15
+#: how far the open fingers reach beyond the TCP along the approach (m, from the MJCF)
+OPEN_HAND_REACH = 0.08
+#: the TCP never goes deeper into the HWS than this (table x): the fingertips stay in the zone
+TCP_MIN_X = -(HANDOVER_DEPTH - OPEN_HAND_REACH)
+#: the arm's reach from the shoulder to the TCP (m): 0.35 + 0.33 + 0.138, less a margin off the singular straight arm
+REACH = 0.78
 
 
 @dataclass
@@ -69,7 +74,7 @@ class RobotController:
     def move_toward(self, pose: mink.SE3, dt: float) -> IKResult:
         """One IK step toward ``pose`` (TCP in world); sends the result to the arm servos."""
         pos = pose.translation().copy()
-        pos[0] = max(pos[0], -HANDOVER_DEPTH)
+        pos[0] = max(pos[0], TCP_MIN_X)
         pose = mink.SE3.from_rotation_and_translation(pose.rotation(), pos)
         # if the arm is held back (a contact), plan from where it is, not where it was told to be
         if np.max(np.abs(self.q() - self.q_cmd)) > 0.25:

@@ -15,6 +15,8 @@ from dataclasses import dataclass
 import mujoco
 import numpy as np
 
+from assistbot.world import GRIPPER_CLOSED, GRIPPER_OPEN
+
 FINGER_ACTUATORS = ("robot_finger1", "robot_finger2", "robot_finger3")
 SPREAD_ACTUATOR = "robot_spread"
 FINGER_JOINTS = ("robot_f1_prox", "robot_f2_prox", "robot_f3_prox")
@@ -24,8 +26,8 @@ FINGER_GEOMS = {
     "f3": ("robot_f3_prox", "robot_f3_dist"),
     "palm": ("robot_palm",),
 }
-OPEN = 0.0
-CLOSED = 2.0  # beyond any grasp: the torque limit bounds the squeeze
+OPEN = GRIPPER_OPEN      # fingers splayed: the widest opening (the glass, 80 mm, fits)
+CLOSED = GRIPPER_CLOSED  # beyond any grasp: the torque limit bounds the squeeze
 
 
 @dataclass
@@ -56,7 +58,7 @@ class Gripper:
 
     def open(self, amount: float = 1.0) -> None:
         """Open the fingers (amount 1: fully; 0.5: half way to closed)."""
-        self.command = OPEN + (1.0 - amount) * CLOSED
+        self.command = OPEN + (1.0 - amount) * (CLOSED - OPEN)
         self.data.ctrl[self._act] = self.command
 
     def close(self) -> None:

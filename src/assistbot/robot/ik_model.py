@@ -15,7 +15,7 @@ from pathlib import Path
 
 import mujoco
 
-from assistbot.robot import mjcf_patch
+from assistbot.world import layout
 
 ARM_JOINTS: tuple[str, ...] = tuple(f"robot_j{i}" for i in range(1, 8))
 HUMAN_BODY_GEOMS: tuple[str, ...] = ("human_head", "human_torso")
@@ -32,17 +32,13 @@ _DROP_BODIES = ("bottle", "stopper", "glass", "human_r_upper_arm")
 
 
 def default_scene_xml() -> Path:
-    return Path(__file__).resolve().parents[3] / "assets" / "mjcf" / "scene.xml"
+    """The scene `assistbot.world.build_world` loads (assets/mjcf/scene.xml)."""
+    return layout.SCENE_XML
 
 
-def build_ik_model(scene_xml: str | Path | None = None, patch: bool = True) -> mujoco.MjModel:
-    """Compile the reduced IK model from the scene MJCF (default: assets/mjcf/scene.xml).
-
-    ``patch``: apply `mjcf_patch` (the MJCF changes requested from the scene) like the bench does.
-    """
+def build_ik_model(scene_xml: str | Path | None = None) -> mujoco.MjModel:
+    """Compile the reduced IK model from the scene MJCF (default: the world's scene.xml)."""
     spec = mujoco.MjSpec.from_file(str(scene_xml or default_scene_xml()))
-    if patch:
-        mjcf_patch.apply(spec)
     for group in (spec.keys, spec.equalities, spec.actuators, spec.sensors, spec.excludes):
         for element in list(group):
             spec.delete(element)

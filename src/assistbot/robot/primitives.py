@@ -24,7 +24,7 @@ import mink
 import numpy as np
 
 from assistbot.robot import poses
-from assistbot.robot.controller import HANDOVER_DEPTH, REACH, RobotController
+from assistbot.robot.controller import REACH, TCP_MIN_X, RobotController
 from assistbot.robot.ik import READY_POSTURE
 from assistbot.robot.target_field import TargetField
 
@@ -75,6 +75,9 @@ class Move(Phase):
             dist = prim.robot.reach_distance(goal.translation())
             if dist > REACH:
                 return Status.FAILED, f"{self.name}: target {np.round(goal.translation(), 2).tolist()} out of reach ({dist:.2f} m from the shoulder > {REACH:.2f} m)"
+            if goal.translation()[0] < TCP_MIN_X - 0.01:
+                return Status.FAILED, (f"{self.name}: target x {goal.translation()[0]:.2f} m is beyond the hand-over zone "
+                                       f"(the hand may reach x >= {TCP_MIN_X:.2f} m)")
         via = poses.interpolate(self.origin, goal, poses.min_jerk(t / self.duration))
         res = prim.robot.move_toward(via, dt)
         if not res.ok:
@@ -109,6 +112,8 @@ class Grip(Phase):
         g = prim.robot.gripper
         if self.close:
             held = g.holding()
+            if prim.object == "held_out" and held in ("bottle", "glass"):
+                prim.object = held  # the held-out object is now known by touch
             if held is not None and (prim.object is None or held == prim.object):
                 self.since = t if self.since is None else self.since
                 if t - self.since >= self.settle:
@@ -191,11 +196,22 @@ class Primitive:
     name = "primitive"
 
     def __init__(self, robot: RobotController, obj: str | None = None, field_: TargetField | None = None,
-                 human_holds: Callable[[], bool] | None = None) -> None:
+                 human_holds: Callable[[], bool] | None = None,
+                 locate: Callable[[str], tuple[float, float] | None] | None = None,
+                 stopper_removed: Callable[[], bool] | None = None) -> None:
+        """``obj``: the object acted on ("bottle", "glass", "held_out" for whatever the human holds out).
+
+        Callbacks (all from perception, never from the physics' ground truth):
+          human_holds()      True while the human's hand holds the object (hand-overs).
+          locate(name)       table (x, y) of another object, e.g. the glass to pour into; None if unseen.
+          stopper_removed()  True once the stopper is seen off the bottle (holding the bottle for it).
+        """
         self.robot = robot
         self.object = obj
         self.field = field_ or TargetField()
         self.human_holds = human_holds or (lambda: False)
+        self.locate = locate or (lambda name: None)
+        self.stopper_removed = stopper_removed or (lambda: False)
         self.carrying = False
         self._held_xy: np.ndarray | None = None  # target x, y frozen while the object is in the hand
         self._phases: list[Phase] = []
@@ -267,11 +283,20 @@ class Primitive:
 
 # ---------------------------------------------------------------------------
 # geometry of the objects (body origin at the bottom centre)
-GRASP_HEIGHT = {"glass": 0.05, "bottle": 0.08}
-RADIUS = {"glass": 0.040, "bottle": 0.035}
+GRASP_HEIGHT = {"glass": 0.05, "bottle": 0.08, "held_out": 0.06}
+RADIUS = {"glass": 0.040, "bottle": 0.035, "held_out": 0.0375}
 TCP_CYLINDER_RADIUS = 0.035  # the TCP is the centre of a 70 mm cylinder touching the palm
 LIFT = 0.12
-REST_POSE_POS = np.array([0.32, 0.05, 1.00])
+#: the bottle's mouth above its grasp point (m): 0.194 - 0.08
+BOTTLE_MOUTH_ABOVE_GRASP = 0.114
+GLASS_HEIGHT = 0.10
+#: where an object is held out for the human to take: its centre (table x, y) and its base height above the table
+HOLD_OUT_XY = (-0.02, -0.04)
+HOLD_OUT_BASE = 0.11
+#: where the human holds an object out (assistbot.human.behaviours: the base at about 0.85-0.87 m world)
+HUMAN_HOLD_OUT_BASE_Z = 0.86
+#: where a received object is put down in the RWS (table x, y)
+RECEIVE_SPOT = (0.20, 0.0)
 
 
 def _point(prim: Primitive, z: float) -> np.ndarray:
@@ -279,14 +304,20 @@ def _point(prim: Primitive, z: float) -> np.ndarray:
     return np.array([x, y, TABLE_Z + z])
 
 
-def _side_grasp_pose(prim: Primitive, back: float = 0.0, up: float = 0.0, roll: float = 0.0,
-                     height: float | None = None) -> mink.SE3:
-    obj = prim.object or "glass"
-    c = _point(prim, (height if height is not None else GRASP_HEIGHT[obj]) + up)
-    rot = poses.side_rotation(c, prim.robot.shoulder)
+def _grasp_pose_at(prim: Primitive, centre: np.ndarray, obj: str, back: float = 0.0, roll: float = 0.0) -> mink.SE3:
+    """Side grasp of ``obj`` whose axis passes through ``centre`` (world, at grasp height)."""
+    rot = poses.side_rotation(centre, prim.robot.shoulder)
     ax = poses.approach_axis(rot)
-    pos = c - ax * (RADIUS[obj] - TCP_CYLINDER_RADIUS + back)
+    pos = centre - ax * (RADIUS[obj] - TCP_CYLINDER_RADIUS + back)
     return poses.pose(rot @ mink.SO3.from_x_radians(roll), pos)
+
+
+def _side_grasp_pose(prim: Primitive, back: float = 0.0, up: float = 0.0, roll: float = 0.0,
+                     height: float | None = None, base_z: float = TABLE_Z) -> mink.SE3:
+    obj = prim.object or "glass"
+    x, y = prim.xy()
+    c = np.array([x, y, base_z + (height if height is not None else GRASP_HEIGHT.get(obj, 0.06)) + up])
+    return _grasp_pose_at(prim, c, obj, back, roll)
 
 
 def _retract() -> list[Phase]:
@@ -294,14 +325,14 @@ def _retract() -> list[Phase]:
             Move("retract", lambda p: poses.pose(mink.SO3.identity(), READY_POSE_POS), duration=1.2, tolerance=0.04)]
 
 
-def _reach_and_grasp(prim: Primitive, height: float | None = None) -> list[Phase]:
+def _reach_and_grasp(prim: Primitive, height: float | None = None, base_z: float = TABLE_Z) -> list[Phase]:
     return [
         _Open("open"),
         Rise("rise", 1.0),
         Move("ready", lambda p: poses.pose(mink.SO3.identity(), READY_POSE_POS), duration=1.2, tolerance=0.04),
-        Move("above pre-grasp", lambda p: _side_grasp_pose(p, back=0.16, up=0.10, height=height), duration=1.5),
-        Move("pre-grasp", lambda p: _side_grasp_pose(p, back=0.16, up=0.0, height=height), duration=0.8),
-        Move("approach", lambda p: _side_grasp_pose(p, height=height), duration=1.0, tolerance=0.025),
+        Move("above pre-grasp", lambda p: _side_grasp_pose(p, back=0.16, up=0.10, height=height, base_z=base_z), duration=1.5),
+        Move("pre-grasp", lambda p: _side_grasp_pose(p, back=0.16, up=0.0, height=height, base_z=base_z), duration=0.8),
+        Move("approach", lambda p: _side_grasp_pose(p, height=height, base_z=base_z), duration=1.0, tolerance=0.025),
         Grip(True, "grasp"),
     ]
 
@@ -311,17 +342,134 @@ class _Open(Grip):
         super().__init__(False, name, settle=0.2)
 
 
-class _Frozen:
-    """A pose captured when a phase starts (lift from where the object was grasped)."""
+class _Carry(Phase):
+    """Marks the end of carrying (after a release) without moving."""
 
-    def __init__(self) -> None:
-        self.pose: mink.SE3 | None = None
+    def __init__(self, carrying: bool) -> None:
+        self.carrying, self.name = carrying, "release done"
+
+    def tick(self, prim, dt, t):
+        prim.carrying = self.carrying
+        prim.robot.hold()
+        return Status.SUCCEEDED, ""
 
 
-def _capture(prim: Primitive) -> mink.SE3:
-    return prim.robot.commanded_tcp_pose()
+class Relative(Move):
+    """Minimum-jerk move by ``offset`` (world, m) from the commanded pose at the phase's start, same orientation."""
+
+    def __init__(self, name: str, offset, duration: float = 1.0, tolerance: float = 0.03) -> None:
+        super().__init__(name, lambda p: self._goal, duration=duration, tolerance=tolerance)
+        self.offset = np.asarray(offset, float)
+
+    def start(self, prim):
+        super().start(prim)
+        self._goal = poses.pose(self.origin.rotation(), self.origin.translation() + self.offset)
 
 
+class BackOff(Relative):
+    """Withdraw the open hand along its approach axis (back toward the robot) and up a little."""
+
+    def __init__(self, name: str = "back off", distance: float = 0.14, up: float = 0.03, duration: float = 1.0) -> None:
+        super().__init__(name, np.zeros(3), duration=duration, tolerance=0.04)
+        self.distance, self.up = distance, up
+
+    def start(self, prim):
+        Move.start(self, prim)
+        ax = poses.approach_axis(self.origin.rotation())
+        ax[2] = 0.0
+        ax /= max(np.linalg.norm(ax), 1e-9)
+        self._goal = poses.pose(self.origin.rotation(), self.origin.translation() - self.distance * ax + [0, 0, self.up])
+
+
+class Roll(Phase):
+    """Roll the hand about its approach axis by ``angle`` (rad), minimum jerk, the TCP staying in place."""
+
+    def __init__(self, name: str, angle: float, duration: float = 1.5, settle: float = 1.5) -> None:
+        self.name, self.angle, self.duration = name, angle, duration
+        self.timeout = duration + settle
+
+    def start(self, prim):
+        self.origin = prim.robot.commanded_tcp_pose()
+        self.failures = 0
+
+    def _pose(self, s: float) -> mink.SE3:
+        return poses.pose(self.origin.rotation() @ mink.SO3.from_x_radians(s * self.angle), self.origin.translation())
+
+    def tick(self, prim, dt, t):
+        res = prim.robot.move_toward(self._pose(poses.min_jerk(t / self.duration)), dt)
+        if not res.ok:
+            self.failures += 1
+            if self.failures >= 10:
+                return Status.FAILED, f"{self.name}: {res.reason}"
+        if t >= self.duration:
+            goal = self._pose(1.0)
+            now = prim.robot.tcp_pose()
+            rot_err = float(np.linalg.norm((goal.rotation().inverse() @ now.rotation()).log()))
+            pos_err = float(np.linalg.norm(now.translation() - goal.translation()))
+            if rot_err < 0.12 and pos_err < 0.03:
+                return Status.SUCCEEDED, ""
+            if t >= self.timeout:
+                return Status.FAILED, f"{self.name}: the wrist did not turn ({np.degrees(rot_err):.0f} deg, {100 * pos_err:.1f} cm off)"
+        return Status.RUNNING, ""
+
+
+class Wait(Phase):
+    """Hold still for ``seconds`` (liquid settling, a fixed pour time)."""
+
+    def __init__(self, name: str, seconds: float) -> None:
+        self.name, self.seconds, self.timeout = name, seconds, seconds + 1.0
+
+    def tick(self, prim, dt, t):
+        prim.robot.move_toward(prim.robot.commanded_tcp_pose(), dt)
+        return (Status.SUCCEEDED, "") if t >= self.seconds else (Status.RUNNING, "")
+
+
+class _FreezeXY(Phase):
+    """Remember where the object stood (for putting it back) before it is lifted."""
+
+    name = "remember place"
+
+    def tick(self, prim, dt, t):
+        prim.home_xy = prim.xy().copy()
+        prim.robot.hold()
+        return Status.SUCCEEDED, ""
+
+
+def _put_down_at(xy_of: Callable[[Primitive], np.ndarray], lift: float = LIFT) -> list[Phase]:
+    """Carry the held object (upright) above a table spot, lower it onto the table, let go, back off."""
+
+    def at(p, up):
+        x, y = xy_of(p)
+        c = np.array([x, y, TABLE_Z + GRASP_HEIGHT[p.object] + up])
+        return _grasp_pose_at(p, c, p.object)
+    return [
+        Move("carry", lambda p: at(p, lift), duration=1.8),
+        Move("put down", lambda p: at(p, 0.006), duration=1.2, tolerance=0.025),
+        _Open("release"), _Carry(False),
+        BackOff(),
+    ]
+
+
+def _hold_out(base: float = HOLD_OUT_BASE, xy=HOLD_OUT_XY, duration: float = 2.5) -> Move:
+    def goal(p):
+        c = np.array([xy[0], xy[1], TABLE_Z + base + GRASP_HEIGHT[p.object]])
+        return _grasp_pose_at(p, c, p.object)
+    return Move("hold out", goal, duration=duration, tolerance=0.03)
+
+
+def _give(timeout: float) -> list[Phase]:
+    """The object is held out: wait until the human holds it, let go, withdraw."""
+    return [
+        WaitFor("wait for the human to take it", lambda p: p.human_holds(), timeout, "the human did not take it"),
+        Wait("feel the pull", 0.3),
+        _Open("let go"), _Carry(False),
+        BackOff("back off", distance=0.16, up=0.0, duration=1.2),
+        *_retract(),
+    ]
+
+
+# ---------------------------------------------------------------------------
+# the primitives
 class ReachAndGrasp(Primitive):
     """Reach the object from the side and grasp it (ends holding it, on the table)."""
 
@@ -338,6 +486,15 @@ class ReachGraspLift(Primitive):
         return _reach_and_grasp(self) + [Move("lift", lambda p: _side_grasp_pose(p, up=LIFT), duration=1.2)]
 
 
+def _turn_phases() -> list[Phase]:
+    # the inverted glass is grasped at its middle too (its height is symmetric)
+    return [
+        Move("lift", lambda p: _side_grasp_pose(p, up=LIFT), duration=1.2),
+        Move("turn half", lambda p: _side_grasp_pose(p, up=LIFT, roll=math.pi / 2), duration=1.2),
+        Move("turn", lambda p: _side_grasp_pose(p, up=LIFT, roll=math.pi), duration=1.2),
+    ]
+
+
 class TurnGlass(Primitive):
     """Grasp the inverted glass, lift, roll it 180 deg about the approach axis, put it down upright, let go."""
 
@@ -347,29 +504,13 @@ class TurnGlass(Primitive):
         super().__init__(robot, obj, **kw)
 
     def phases(self):
-        # the inverted glass is grasped at its middle too (its height is symmetric)
-        return _reach_and_grasp(self) + [
-            Move("lift", lambda p: _side_grasp_pose(p, up=LIFT), duration=1.2),
-            Move("turn half", lambda p: _side_grasp_pose(p, up=LIFT, roll=math.pi / 2), duration=1.2),
-            Move("turn", lambda p: _side_grasp_pose(p, up=LIFT, roll=math.pi), duration=1.2),
+        return _reach_and_grasp(self) + _turn_phases() + [
             Move("lower", lambda p: _side_grasp_pose(p, up=0.008, roll=math.pi), duration=1.2),
             _Open("release"),
             _Carry(False),
             Move("back off", lambda p: _side_grasp_pose(p, back=0.16, up=0.03, roll=math.pi), duration=1.0, tolerance=0.04),
             *_retract(),
         ]
-
-
-class _Carry(Phase):
-    """Marks the end of carrying (after a release) without moving."""
-
-    def __init__(self, carrying: bool) -> None:
-        self.carrying, self.name = carrying, "release done"
-
-    def tick(self, prim, dt, t):
-        prim.carrying = self.carrying
-        prim.robot.hold()
-        return Status.SUCCEEDED, ""
 
 
 class Retract(Primitive):
@@ -407,16 +548,140 @@ class PlaceInRWS(Primitive):
         self.spot = np.array(spot, float)
 
     def phases(self):
-        spot = self.spot
+        return (_reach_and_grasp(self) + [Move("lift", lambda p: _side_grasp_pose(p, up=LIFT), duration=1.2)]
+                + _put_down_at(lambda p: p.spot) + _retract())
 
-        def at_spot(p, up):
-            c = np.array([spot[0], spot[1], TABLE_Z + GRASP_HEIGHT[p.object] + up])
-            rot = poses.side_rotation(c, p.robot.shoulder)
-            return poses.pose(rot, c - poses.approach_axis(rot) * (RADIUS[p.object] - TCP_CYLINDER_RADIUS))
+
+class HoldBottleForStopper(Primitive):
+    """Grasp the closed bottle, hold it out upright near the middle line where the human can pull the
+    stopper, keep it there until ``stopper_removed()`` (perception), put it back where it stood, let go.
+
+    The grip holds the bottle by friction against the pull; the world decides when the fit gives."""
+
+    name = "hold_bottle_for_stopper"
+    HOLD_XY = (-0.02, -0.02)
+    HOLD_BASE = 0.10
+
+    def __init__(self, robot, obj="bottle", timeout: float = 30.0, **kw):
+        super().__init__(robot, obj, **kw)
+        self.timeout = timeout
+        self.home_xy: np.ndarray | None = None
+
+    def phases(self):
         return _reach_and_grasp(self) + [
+            _FreezeXY(),
             Move("lift", lambda p: _side_grasp_pose(p, up=LIFT), duration=1.2),
-            Move("carry", lambda p: at_spot(p, LIFT), duration=1.5),
-            Move("put down", lambda p: at_spot(p, 0.008), duration=1.2),
-            _Open("release"), _Carry(False),
+            _hold_out(self.HOLD_BASE, self.HOLD_XY),
+            WaitFor("hold steady for the stopper", lambda p: p.stopper_removed(), self.timeout,
+                    "the stopper was not removed"),
+            Wait("settle", 0.3),
+            *_put_down_at(lambda p: p.home_xy),
+            *_retract(),
+        ]
+
+
+class Pour(Primitive):
+    """Grasp the open bottle, bring it beside and above the upright glass (``locate("glass")``), roll it
+    until the mouth points down into the glass, hold while the liquid runs, roll back, put the bottle
+    back where it stood, let go and retract."""
+
+    name = "pour"
+    TILT = math.radians(140)
+    POUR_SECONDS = 2.5
+    MOUTH_ABOVE_RIM = 0.035
+
+    def __init__(self, robot, obj="bottle", glass_xy=None, **kw):
+        super().__init__(robot, obj, **kw)
+        self.glass_xy = None if glass_xy is None else np.asarray(glass_xy, float)
+        self.home_xy: np.ndarray | None = None
+
+    def start(self, target_xy=None) -> None:
+        super().start(target_xy)
+        if self.glass_xy is None:
+            g = self.locate("glass")
+            if g is None:
+                self.progress = Progress(Status.FAILED, "locate glass", "the glass is not seen: nowhere to pour")
+                return
+            self._glass = np.asarray(g, float)
+        else:
+            self._glass = self.glass_xy
+
+    def _pour_pose(self, tilt: float) -> mink.SE3:
+        """TCP pose holding the bottle rolled by ``tilt`` with the mouth, at the full tilt, over the glass centre."""
+        mouth = np.array([self._glass[0], self._glass[1], TABLE_Z + GLASS_HEIGHT + self.MOUTH_ABOVE_RIM])
+        rot0 = poses.side_rotation(mouth, self.robot.shoulder)
+        rot_full = rot0 @ mink.SO3.from_x_radians(self.TILT)
+        tcp = mouth - rot_full.as_matrix() @ np.array([0.0, 0.0, BOTTLE_MOUTH_ABOVE_GRASP])
+        return poses.pose(rot0 @ mink.SO3.from_x_radians(tilt), tcp)
+
+    def phases(self):
+        return _reach_and_grasp(self) + [
+            _FreezeXY(),
+            Move("lift", lambda p: _side_grasp_pose(p, up=LIFT), duration=1.2),
+            Move("over the glass", lambda p: p._pour_pose(0.0), duration=1.8),
+            Roll("tilt", self.TILT, duration=1.5),
+            Wait("pour", self.POUR_SECONDS),
+            Roll("tilt back", -self.TILT, duration=1.2),
+            *_put_down_at(lambda p: p.home_xy),
+            *_retract(),
+        ]
+
+
+class HandOver(Primitive):
+    """Grasp the object, carry it upright (slowly: it may be a full glass) to the hand-over zone, hold it
+    out until ``human_holds()``, let go, withdraw."""
+
+    name = "hand_over"
+
+    def __init__(self, robot, obj="glass", timeout: float = 20.0, **kw):
+        super().__init__(robot, obj, **kw)
+        self.timeout = timeout
+
+    def phases(self):
+        return _reach_and_grasp(self) + [
+            Move("lift", lambda p: _side_grasp_pose(p, up=LIFT), duration=1.5),
+            _hold_out(duration=3.0),
+            *_give(self.timeout),
+        ]
+
+
+class TurnAndHandOver(Primitive):
+    """Turn the inverted glass in the air (as `TurnGlass`), then hold it out upright and give it to the human."""
+
+    name = "turn_and_hand_over"
+
+    def __init__(self, robot, obj="glass", timeout: float = 20.0, **kw):
+        super().__init__(robot, obj, **kw)
+        self.timeout = timeout
+
+    def phases(self):
+        # after the roll the gripper is upside down: keep that roll while holding out
+        def hold(p):
+            c = np.array([HOLD_OUT_XY[0], HOLD_OUT_XY[1], TABLE_Z + HOLD_OUT_BASE + GRASP_HEIGHT[p.object]])
+            return _grasp_pose_at(p, c, p.object, roll=math.pi)
+        return _reach_and_grasp(self) + _turn_phases() + [
+            Move("hold out", hold, duration=2.5, tolerance=0.03),
+            *_give(self.timeout),
+        ]
+
+
+class Receive(Primitive):
+    """Take the object the human holds out (target: the human's hand), wait until the human lets go,
+    put it down at ``spot`` in the RWS, let go, retract."""
+
+    name = "receive"
+
+    def __init__(self, robot, obj="held_out", spot=RECEIVE_SPOT, timeout: float = 10.0, **kw):
+        super().__init__(robot, obj, **kw)
+        self.spot = np.array(spot, float)
+        self.timeout = timeout
+
+    def phases(self):
+        return _reach_and_grasp(self, base_z=HUMAN_HOLD_OUT_BASE_Z) + [
+            Wait("hold", 0.5),
+            WaitFor("wait for the human to let go", lambda p: not p.human_holds(), self.timeout,
+                    "the human did not let go"),
+            Relative("take back", [0.06, 0.0, 0.03], duration=1.0),
+            *_put_down_at(lambda p: p.spot),
             *_retract(),
         ]
