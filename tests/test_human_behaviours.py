@@ -1,47 +1,12 @@
 """Behaviours in physics: grasps from two placements, the stopper pull (fails free, works held),
-the passive profile's patience, determinism.  The robot side is a stand-in: a mocap body whose
-weld holds the bottle (physics decides; the human only sees that the stand-in holds it)."""
+the passive profile's patience, determinism.  (The stopper pull while the robot holds the bottle,
+with the `human.standin` robot, is in test_human_acts.py.)"""
 
-import mujoco
 import numpy as np
 import pytest
 
 from assistbot.human.controller import HumanController
-from assistbot.human.perception import RobotView
-from assistbot.world import Arrangement, World, build_world, layout
-
-
-def _world_with_standin(arr: Arrangement, seed: int = 0):
-    """The scene plus a mocap 'hand' that can weld itself to the bottle (a stand-in robot)."""
-    spec = mujoco.MjSpec.from_file(str(layout.SCENE_XML))
-    body = spec.worldbody.add_body(name="standin", mocap=True, pos=[0.3, 0.0, 1.2])
-    body.add_geom(type=mujoco.mjtGeom.mjGEOM_SPHERE, size=[0.01, 0, 0], contype=0, conaffinity=0)
-    spec.add_equality(name="standin_hold", type=mujoco.mjtEq.mjEQ_WELD, name1="standin", name2="bottle",
-                      objtype=mujoco.mjtObj.mjOBJ_BODY, active=False)
-    model = spec.compile()
-    w = World(model, arr.validate(), seed)
-    return w
-
-
-def _hold_bottle(w):
-    """Put the stand-in at the bottle and weld it (keeping the relative pose)."""
-    m, d = w.model, w.data
-    mid = m.body("standin").mocapid[0]
-    d.mocap_pos[mid] = d.xpos[w.body_id["bottle"]] + np.array([0.05, 0, 0.08])
-    mujoco.mj_forward(m, d)
-    eq = m.equality("standin_hold").id
-    m.eq_data[eq, :] = 0
-    hb = d.xpos[m.body("standin").id]
-    m.eq_data[eq, 3:6] = d.xpos[w.body_id["bottle"]] - hb  # standin frame = world-aligned
-    m.eq_data[eq, 6:10] = d.xquat[w.body_id["bottle"]]
-    m.eq_data[eq, 10] = 1.0
-    d.eq_active[eq] = 1
-
-
-def _standin_view(w):
-    held = bool(w.data.eq_active[w.model.equality("standin_hold").id])
-    p = w.data.xpos[w.model.body("standin").id]
-    return RobotView("bottle" if held else None, tuple(p), True, False)
+from assistbot.world import Arrangement, build_world, layout
 
 
 @pytest.mark.parametrize("where", [(-0.22, -0.12), (-0.28, -0.02)])
@@ -67,17 +32,6 @@ def test_stopper_pull_fails_with_a_free_bottle():
     ends = [e for e in hc.events() if e.kind in ("success", "failure")]
     assert ends and ends[0].kind == "failure" and "lifts" in ends[0].detail["reason"]
     assert w.state().stopper_attached
-
-
-def test_stopper_pull_succeeds_while_the_bottle_is_held():
-    w = _world_with_standin(Arrangement.from_options("HWS:closed", "RWS:empty"))
-    _hold_bottle(w)
-    hc = HumanController(w, profile="passive", see=_standin_view)
-    hc.start("pull_stopper")
-    hc.run(10.0)
-    ends = [e for e in hc.events() if e.kind in ("success", "failure")]
-    assert ends and ends[0].kind == "success", ends
-    assert not w.state().stopper_attached and w.state().bottle_open
 
 
 def test_passive_does_nothing_for_30_s_without_a_request():

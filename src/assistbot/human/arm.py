@@ -173,6 +173,7 @@ class HumanArm:
         self.segments: list[Segment] = []
         p, R = self.fk(self.q)
         self.p_goal, self.R_goal = p, R
+        self.R_rest = R          # the hand's orientation at rest (a relaxed wrist)
 
     def fk(self, q: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """Pose (position, rotation) of the grasp site for arm angles q."""

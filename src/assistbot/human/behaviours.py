@@ -15,7 +15,7 @@ from typing import Callable, Generator
 
 import numpy as np
 
-from assistbot.human.arm import grip_orientation, rot_y, rot_z
+from assistbot.human.arm import ORIENT, SHOULDER_XY, grip_orientation, rot_y, rot_z
 from assistbot.world import layout
 
 Gen = Generator[None, None, tuple[bool, str]]
@@ -30,7 +30,14 @@ LIFT = 0.07                       # m lifted after a grasp
 #: grasp-site height above the object's base (m), per object and grip
 GRASP_HEIGHT = {("bottle", "ag"): 0.17, ("bottle", "sg"): 0.085, ("glass", "ag"): 0.085, ("glass", "sg"): 0.055}
 DRINK_FRACTION = 0.75             # share of the glass's particles that must reach the mouth
+POINT_X_MAX = -0.10               # world x, the pointing hand stays behind this
+POINT_TOLERANCE = 0.35            # rad, finger direction vs the direction to the object
+TURN_LIFT = 0.04                  # m, the inverted glass is lifted this much before the half turn
 TILT_MAX = 2.1                    # rad, glass tilt at the end of a drink
+#: where the glass's pouring lip is held, relative to the mouth site (world, m)
+LIP_OFFSET = np.array([0.015, 0.0, -0.015])
+#: yaw (rad, about the vertical, to the left) of the side-grip hand while drinking
+DRINK_YAW = 0.75
 
 
 @dataclass
@@ -93,6 +100,11 @@ def _move(c, p, R=None, speed: float | None = None, tol: float = 0.03) -> Genera
             return False
         yield
     return True
+
+
+def _to_rest(c) -> Generator[None, None, bool]:
+    """Bring the hand back to its resting place near the body, with a relaxed wrist."""
+    return (yield from _move(c, REST, c.arm.R_rest))
 
 
 def _close(c, posture: str, obj: str) -> Generator[None, None, bool]:
@@ -169,7 +181,7 @@ def put_down(c, object: str | None = None, at: tuple[float, float] | None = None
     _, R_now = c.arm.hand_pose()
     back = -0.08 * R_now[:, 2] if held != "stopper" else np.zeros(3)
     yield from _move(c, c.arm.p_goal + np.array([0, 0, 0.07]) - back)
-    yield from _move(c, REST, None)
+    yield from _to_rest(c)
     p = _center_base(c, held)
     ok = c.world.human_holding() is None and p[2] < layout.TABLE_Z + 0.03 and np.linalg.norm(p[:2] - spot) < 0.05
     return bool(ok), f"{held} put down at ({p[0]:.2f}, {p[1]:.2f})"
@@ -189,7 +201,7 @@ def hand_to_robot(c, object: str, grip: str | None = None, timeout: float = 20.0
     yield from _wait(c, c.profile.reaction_delay)
     c.arm.set_posture("open")
     yield from _wait(c, 0.5)
-    yield from _move(c, REST, None)
+    yield from _to_rest(c)
     ok = c.world.human_holding() is None and c.view.holds == object
     return ok, f"{object} handed over"
 
@@ -221,17 +233,24 @@ def request(c, hold: float = 0.0) -> Gen:
 
 
 def point(c, object: str, hold: float = 1.5) -> Gen:
-    """Point at `object` with the index finger, then lower the hand."""
+    """Point at `object` with the index finger (the hand stays in the HWS), hold, lower the hand.
+
+    Succeeds when the measured finger direction was within POINT_TOLERANCE of the object."""
     target = _pos(c, object) + np.array([0, 0, 0.10])
     c.arm.set_posture("point")
-    d = target - c.arm.hand_pose()[0]
-    d[2] = 0
-    p = target - 0.15 * d / max(np.linalg.norm(d), 1e-6)
+    d = np.array([*(target[:2] - SHOULDER_XY), 0.0])       # the bearing from the shoulder
+    d /= max(float(np.linalg.norm(d)), 1e-6)
+    p = target - 0.15 * d
+    if p[0] > POINT_X_MAX:  # an object in the RWS: point from this side of the line, along the same bearing
+        p = p - d * (p[0] - POINT_X_MAX) / max(d[0], 1e-6)
     ok = yield from _move(c, p, grip_orientation("point", target))
+    hand, R = c.arm.hand_pose()
+    v = target - hand
+    err = float(np.arccos(np.clip((-R[:, 2]) @ v / max(float(np.linalg.norm(v)), 1e-6), -1.0, 1.0)))
     yield from _wait(c, hold)
     c.arm.set_posture("open")
-    yield from _move(c, REST, None)
-    return ok, f"pointed at the {object}"
+    yield from _to_rest(c)
+    return bool(ok and err < POINT_TOLERANCE), f"pointed at the {object} ({np.degrees(err):.0f} deg off)"
 
 
 def pull_stopper(c, timeout: float = 3.0) -> Gen:
@@ -264,7 +283,7 @@ def pull_stopper(c, timeout: float = 3.0) -> Gen:
             yield from _move(c, s, R)
             c.arm.set_posture("open")
             yield from _wait(c, 0.4)
-            yield from _move(c, REST, None)
+            yield from _to_rest(c)
             return False, "the bottle lifts with the stopper (nobody holds it)"
     if w.data.eq_active[w.eq_stopper]:
         c.arm.set_posture("open")
@@ -283,14 +302,14 @@ def turn_glass(c) -> Gen:
     if not ok:
         return False, why
     hand, R = c.arm.hand_pose()
-    yield from _move(c, hand + np.array([0, 0, 0.12]), R)
+    yield from _move(c, hand + np.array([0, 0, TURN_LIFT]), R)
     axis = -R[:, 2]  # fingers' direction: roll about it
     a = axis / np.linalg.norm(axis)
     K = np.array([[0, -a[2], a[1]], [a[2], 0, -a[0]], [-a[1], a[0], 0]])
     for frac in (0.5, 1.0):
         ang = -np.pi * frac
         Rr = np.eye(3) + np.sin(ang) * K + (1 - np.cos(ang)) * K @ K
-        yield from _move(c, hand + np.array([0, 0, 0.14]), Rr @ R, speed=0.1)
+        yield from _move(c, hand + np.array([0, 0, TURN_LIFT]), Rr @ R, speed=0.1)
     ok, why = yield from put_down(c, "glass", at=tuple(base0[:2]))
     up = _axis(c, "glass")[2] > 0.9
     return bool(ok and up), "glass upright" if up else "the glass is not upright"
@@ -307,28 +326,42 @@ def drink(c, timeout: float = 6.0) -> Gen:
     n0 = st.liquid.in_glass
     drunk0 = int(w.drunk.sum())
     mouth = w.data.site_xpos[w.site_id["human_mouth"]].copy()
-    # hand pose that puts the rim at the lips, glass tilted toward the mouth by `tilt`
+    # The pouring lip: the point of the rim on the side toward the face.  The glass tilts
+    # about the world y axis (toward the face, -x); the lip is held just in front of and
+    # below the mouth, so the liquid that flows over it passes the lips.
+    # The glass is round: any hand yaw about its axis holds it the same.  The drinking hand
+    # orientation is a canonical side grip (fingers DRINK_YAW to the left of straight ahead),
+    # whatever the yaw of the grasp was; the glass's pose in the hand stays what the grip made it.
     hand, R0 = c.arm.hand_pose()
-    gpos = _pos(c, "glass")
-    rim_in_hand = R0.T @ (gpos + layout.GLASS_HEIGHT * _axis(c, "glass") - hand)
-    Rg = R0
+    gpos, Rg0 = _pos(c, "glass"), w.data.xmat[w.body_id["glass"]].reshape(3, 3).copy()
+    Rc = rot_z(DRINK_YAW) @ ORIENT["sg"]
+    g_in_hand, Rg_in_hand = R0.T @ (gpos - hand), R0.T @ Rg0
+    axis0 = Rc @ Rg_in_hand[:, 2]
+    toward_face = np.array([-1.0, 0.0, 0.0]) - axis0 * -axis0[0]
+    toward_face /= max(float(np.linalg.norm(toward_face)), 1e-9)
+    lip_in_hand = Rc.T @ (Rc @ g_in_hand + layout.GLASS_HEIGHT * axis0 + layout.GLASS_INNER_RADIUS * toward_face)
+    lip_at = mouth + LIP_OFFSET
 
-    def pose(tilt: float):
-        Rt = rot_y(-tilt) @ Rg
-        return mouth + np.array([0.025, 0, -0.01]) - Rt @ rim_in_hand, Rt
+    def pose(tilt: float, away: float = 0.0):
+        Rt = rot_y(-tilt) @ Rc
+        return lip_at + np.array([away, 0.0, -0.5 * away]) - Rt @ lip_in_hand, Rt
 
-    p, R = pose(0.3)
-    if not (yield from _move(c, p + np.array([0.06, 0, -0.02]), R)):
+    p, R = pose(0.3, away=0.08)
+    if not (yield from _move(c, p, R)):
         return False, "could not bring the glass up"
+    p, R = pose(0.5)
     yield from _move(c, p, R, tol=0.04)
-    for tilt in np.linspace(0.6, TILT_MAX, 4):
+    emptied = lambda: int(w.drunk.sum()) - drunk0 >= n0  # noqa: E731
+    for tilt in np.linspace(0.9, TILT_MAX, 4):
+        if emptied():
+            break
         p, R = pose(tilt)
         yield from _move(c, p, R, speed=0.05, tol=0.05)
     enough = max(1, int(np.ceil(DRINK_FRACTION * max(n0, 1))))
     got = yield from _wait_until(c, lambda: int(w.drunk.sum()) - drunk0 >= enough and n0 > 0, timeout)
     drunk = int(w.drunk.sum()) - drunk0
-    p, R = pose(0.2)
-    yield from _move(c, p + np.array([0.08, 0, -0.05]), R)
+    p, R = pose(0.2, away=0.10)
+    yield from _move(c, p, R)
     c.note("drink", {"in_glass": n0, "drunk": drunk})
     if n0 == 0:
         return False, "the glass was empty: nothing to drink"

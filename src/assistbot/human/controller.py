@@ -108,6 +108,8 @@ class HumanController:
             self.current = None
 
     def _on_seen(self, key: str) -> None:
+        if self._scripted:
+            return  # spontaneous reactions to a sight belong to the default policy; a script decides itself
         for resp in policy.response_to_sight(self, key):
             if resp not in self._pending:
                 self._pending.append(resp)
@@ -146,10 +148,12 @@ class HumanController:
         return self.current
 
     def _next(self) -> None:
-        if self._pending:
+        while self._pending:
             name, args = self._pending.pop(0)
-            self.start(name, **args)
-            return
+            if policy.still_relevant(self, name, args):
+                self.start(name, **args)
+                return
+            self.log.append(Event(self.t, "note", "dropped", {"behaviour": name, **args}))
         if self.script:
             step = self.script[0]
             if self.happened(step.after):

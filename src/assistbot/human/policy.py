@@ -56,6 +56,16 @@ def response_to_sight(c, key: str) -> list[tuple[str, dict]]:
     return []
 
 
+def still_relevant(c, name: str, args: dict) -> bool:
+    """A response that waited while the hand was busy: does what it answers still hold?"""
+    if name == "take_from_robot":
+        # the robot still has the object in hand (and the human's hand is free to take it)
+        return c.view.holds is not None and args.get("object") in (None, c.view.holds) and c.world.human_holding() is None
+    if name == "pull_stopper":
+        return bool(c.world.data.eq_active[c.world.eq_stopper])
+    return True
+
+
 def next_move(c) -> tuple[str, dict] | None:
     """The active default policy: the next move toward drinking, or None."""
     s = _scene(c)

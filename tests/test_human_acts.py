@@ -1,0 +1,246 @@
+"""Every behaviour in physics from two placements, the passive profile's answer to each kind of
+request, and scripts whose steps wait for events.  The robot side is `human.standin`: a mocap
+block that holds an object only through a weld (physics decides; the human only sees it)."""
+
+import numpy as np
+import pytest
+
+from assistbot.human.behaviours import DRINK_FRACTION, POINT_X_MAX
+from assistbot.human.controller import HumanController
+from assistbot.human.script import parse_human
+from assistbot.human.standin import StandIn, build_world_with_standin
+from assistbot.world import Arrangement, layout
+
+
+def _arr(bottle: dict, glass: dict) -> Arrangement:
+    return Arrangement.from_mapping({"bottle": bottle, "glass": glass})
+
+
+def _setup(arr: Arrangement, profile: str = "passive", script=None):
+    w = build_world_with_standin(arr, seed=0)
+    s = StandIn(w)
+    cfg = parse_human({"profile": profile, "script": script}) if script is not None else None
+    hc = HumanController(w, profile=profile, config=cfg, see=s.view)
+    return w, s, hc
+
+
+def _run_until_done(hc, s, limit: float, name: str | None = None):
+    """Run until a behaviour (named `name`, or any) has ended; return the ending events."""
+    t_end = hc.world.time + limit
+    while hc.world.time < t_end:
+        hc.run(0.5, robot=s.tick)
+        ends = [e for e in hc.events() if e.kind in ("success", "failure") and (name is None or e.what == name)]
+        if ends and hc.current is None:
+            return ends
+    return [e for e in hc.events() if e.kind in ("success", "failure")]
+
+
+def _ok(ends, name):
+    mine = [e for e in ends if e.what == name]
+    assert mine and mine[-1].kind == "success", ends
+    return mine[-1]
+
+
+# ---------------------------------------------------------------------------- drink
+@pytest.mark.parametrize("where", [(-0.22, 0.12), (-0.18, -0.15)])
+def test_drink_from_a_full_glass_counts(where):
+    w, s, hc = _setup(_arr({"zone": "RWS", "state": "open"}, {"zone": "HWS", "state": "full", "position": list(where)}))
+    n0 = w.state().liquid.in_glass
+    assert n0 >= 0.6 * layout.N_PARTICLES
+    hc.start("drink")
+    _ok(_run_until_done(hc, s, 20.0), "drink")
+    st = w.state()
+    assert st.liquid.drunk >= DRINK_FRACTION * n0          # particles that passed within 4 cm of the mouth
+    assert st.human_holds == "glass" and st.liquid.in_glass == 0
+
+
+def test_drink_does_not_count_with_an_empty_glass():
+    w, s, hc = _setup(_arr({"zone": "HWS", "state": "closed"}, {"zone": "HWS", "state": "empty"}))
+    hc.start("drink")
+    ends = _run_until_done(hc, s, 20.0)
+    assert ends[-1].what == "drink" and ends[-1].kind == "failure" and "empty" in ends[-1].detail["reason"]
+    assert w.state().liquid.drunk == 0
+    assert w.state().human_holds == "glass"                 # the glass really was brought up
+
+
+# ---------------------------------------------------------------------------- turn glass, put down, point, request
+@pytest.mark.parametrize("where", [(-0.22, 0.12), (-0.18, -0.15)])
+def test_turn_glass_upright(where):
+    w, s, hc = _setup(_arr({"zone": "RWS", "state": "open"}, {"zone": "HWS", "state": "inverted", "position": list(where)}))
+    hc.start("turn_glass")
+    _ok(_run_until_done(hc, s, 25.0), "turn_glass")
+    g = w.state().objects["glass"]
+    assert g.upright and g.held_by is None and g.pos[2] < layout.TABLE_Z + 0.01
+    assert np.linalg.norm(np.array(g.pos[:2]) - where) < 0.05
+
+
+@pytest.mark.parametrize("obj,grip,start,spot", [
+    ("bottle", "ag", (-0.22, -0.12), (-0.30, 0.05)),
+    ("glass", "sg", (-0.28, 0.05), (-0.20, -0.15)),
+])
+def test_put_down_at_a_spot_by_script(obj, grip, start, spot):
+    other = "glass" if obj == "bottle" else "bottle"
+    arr = {obj: {"zone": "HWS", "state": "closed" if obj == "bottle" else "empty", "position": list(start)},
+           other: {"zone": "RWS", "state": "open" if other == "bottle" else "empty"}}
+    w, s, hc = _setup(Arrangement.from_mapping(arr),
+                      script=[{"do": "grasp", "object": obj, "grip": grip}, {"do": "put_down", "object": obj, "at": list(spot)}])
+    _ok(_run_until_done(hc, s, 25.0, "put_down"), "put_down")
+    o = w.state().objects[obj]
+    assert w.state().human_holds is None and o.upright and o.pos[2] < layout.TABLE_Z + 0.01
+    assert np.linalg.norm(np.array(o.pos[:2]) - spot) < 0.05
+
+
+@pytest.mark.parametrize("bottle,glass,obj", [
+    ({"zone": "HWS", "state": "closed"}, {"zone": "RWS", "state": "empty"}, "glass"),
+    ({"zone": "RWS", "state": "closed", "position": [0.25, -0.30]}, {"zone": "HWS", "state": "empty", "position": [-0.30, 0.10]}, "glass"),
+    ({"zone": "RWS", "state": "closed", "position": [0.25, -0.30]}, {"zone": "HWS", "state": "empty"}, "bottle"),
+])
+def test_point_at_an_object(bottle, glass, obj):
+    w, s, hc = _setup(_arr(bottle, glass))
+    hc.start("point", object=obj, hold=1.0)
+    aims = []
+    t_end = w.time + 8.0
+    while w.time < t_end and (hc.current is not None or not aims):
+        hc.run(0.1, robot=s.tick)
+        p, R = hc.arm.hand_pose()
+        v = w.data.xpos[w.body_id[obj]] + [0, 0, 0.10] - p
+        aims.append(float(np.arccos(np.clip(-R[:, 2] @ v / np.linalg.norm(v), -1, 1))))
+        assert p[0] <= POINT_X_MAX + 0.02
+    _ok(hc.events(), "point")
+    assert min(aims) < 0.35                                   # the index finger was aimed at the object
+    assert hc.events("clamped") == []                         # pointing never tried to cross the line
+
+
+@pytest.mark.parametrize("bottle,glass", [
+    ({"zone": "RWS", "state": "closed"}, {"zone": "RWS", "state": "empty"}),
+    ({"zone": "HWS", "state": "open"}, {"zone": "RWS", "state": "inverted"}),
+])
+def test_request_holds_out_an_open_palm(bottle, glass):
+    w, s, hc = _setup(_arr(bottle, glass))
+    hc.start("request", hold=1.0)
+    t_end = w.time + 8.0
+    palm_up = []
+    while w.time < t_end and hc.current is not None:
+        hc.run(0.1, robot=s.tick)
+        p, R = hc.arm.hand_pose()
+        palm_up.append((p[0], R[2, 1], w.qpos("human_r_index_prox")))
+    _ok(hc.events(), "request")
+    x, up, flex = palm_up[-1]
+    assert -0.20 < x < 0.0 and up > 0.8 and flex < 0.3        # in the hand-over zone, palm up, fingers open
+
+
+# ---------------------------------------------------------------------------- hand-overs with the stand-in
+@pytest.mark.parametrize("obj,grip,where", [("bottle", "ag", (-0.22, -0.12)), ("glass", "sg", (-0.28, 0.05))])
+def test_hand_to_robot(obj, grip, where):
+    other = "glass" if obj == "bottle" else "bottle"
+    arr = {obj: {"zone": "HWS", "state": "closed" if obj == "bottle" else "empty", "position": list(where)},
+           other: {"zone": "RWS", "state": "open" if other == "bottle" else "empty"}}
+    w, s, hc = _setup(Arrangement.from_mapping(arr))
+    s.take_when_offered = obj
+    hc.start("hand_to_robot", object=obj, grip=grip)
+    _ok(_run_until_done(hc, s, 25.0), "hand_to_robot")
+    hc.run(2.0, robot=s.tick)
+    st = w.state()
+    assert st.human_holds is None and s.holds() == obj
+    assert st.objects[obj].pos[0] > 0.1                       # the stand-in carried it into the RWS
+
+
+@pytest.mark.parametrize("obj,at", [("glass", (0.0, -0.05, 0.78)), ("bottle", (-0.02, 0.05, 0.80))])
+def test_take_from_robot(obj, at):
+    w, s, hc = _setup(_arr({"zone": "RWS", "state": "open"}, {"zone": "RWS", "state": "empty"}))
+    s.grasp_at(obj)
+    s.release_when_taken = True
+    hc.run(0.02, robot=s.tick)
+    s.carry_to(at)
+    hc.start("take_from_robot", object=obj)
+    _ok(_run_until_done(hc, s, 25.0), "take_from_robot")
+    st = w.state()
+    assert st.human_holds == obj and s.holds() is None and st.objects[obj].pos[0] < -0.15
+
+
+@pytest.mark.parametrize("where", [(0.15, -0.05), (0.15, 0.10)])
+def test_stopper_pull_succeeds_while_the_robot_holds_the_bottle_out(where):
+    w, s, hc = _setup(_arr({"zone": "RWS", "state": "closed", "position": list(where)}, {"zone": "HWS", "state": "empty"}))
+    s.grasp_at("bottle")
+    hc.run(0.02, robot=s.tick)
+    s.carry_to((-0.06, where[1] * 0.5, layout.TABLE_Z + 0.03))
+    hc.run(3.0, robot=s.tick)
+    hc.start("pull_stopper")
+    _ok(_run_until_done(hc, s, 20.0), "pull_stopper")
+    st = w.state()
+    assert st.bottle_open and st.objects["stopper"].pos[0] < -0.2 and st.liquid.in_bottle == layout.N_PARTICLES
+
+
+# ---------------------------------------------------------------------------- the passive profile answers requests
+def test_passive_pulls_the_stopper_when_invited():
+    w, s, hc = _setup(_arr({"zone": "RWS", "state": "closed", "position": [0.15, -0.05]}, {"zone": "HWS", "state": "empty"}))
+    s.grasp_at("bottle")
+    hc.run(0.02, robot=s.tick)
+    s.carry_to((-0.06, -0.03, layout.TABLE_Z + 0.03))
+    hc.run(3.0, robot=s.tick)
+    assert hc.events("start") == []
+    t_said = w.time
+    hc.hear("invite:remove_stopper", t_said)
+    ends = _run_until_done(hc, s, 20.0)
+    start = hc.events("start")[0]
+    assert start.what == "pull_stopper" and start.t >= t_said + hc.profile.reaction_delay - 1e-6
+    _ok(ends, "pull_stopper")
+    assert w.state().bottle_open
+
+
+def test_passive_hands_over_the_object_asked_for_to_the_open_hand():
+    w, s, hc = _setup(_arr({"zone": "HWS", "state": "closed"}, {"zone": "RWS", "state": "empty"}))
+    s.place((0.03, -0.05, 0.95))                               # the robot's open hand held out
+    s.take_when_offered = "bottle"
+    hc.run(2.0, robot=s.tick)
+    assert hc.view.requests and hc.events("start") == []       # seeing the open hand alone is no request
+    t_said = w.time
+    hc.hear("request:bottle", t_said)
+    _ok(_run_until_done(hc, s, 25.0), "hand_to_robot")
+    assert hc.events("start")[0].t >= t_said + hc.profile.reaction_delay - 1e-6
+    assert s.holds() == "bottle" and w.state().human_holds is None
+
+
+def test_passive_takes_the_object_offered():
+    w, s, hc = _setup(_arr({"zone": "RWS", "state": "open"}, {"zone": "RWS", "state": "empty"}))
+    s.grasp_at("glass")
+    s.release_when_taken = True
+    hc.run(0.02, robot=s.tick)
+    s.carry_to((0.0, -0.05, 0.78))
+    hc.run(3.0, robot=s.tick)
+    assert hc.view.offers == "glass" and hc.events("start") == []
+    hc.hear("offer:glass", w.time)
+    _ok(_run_until_done(hc, s, 25.0), "take_from_robot")
+    assert w.state().human_holds == "glass" and s.holds() is None
+
+
+def test_passive_drinks_when_told_the_glass_is_ready():
+    w, s, hc = _setup(_arr({"zone": "RWS", "state": "open"}, {"zone": "HWS", "state": "full"}))
+    hc.run(2.0, robot=s.tick)
+    assert hc.events("start") == []
+    hc.hear("suggest:drink", w.time)
+    _ok(_run_until_done(hc, s, 25.0), "drink")
+    assert w.state().liquid.drunk >= DRINK_FRACTION * layout.N_PARTICLES
+
+
+# ---------------------------------------------------------------------------- scripts wait for their events
+def test_script_steps_wait_for_after_events():
+    script = [
+        {"do": "pull_stopper", "after": {"robot_holds": "bottle"}},
+        {"do": "request", "hold": 0.5, "after": {"robot_said": "inform:fill_glass"}},
+    ]
+    w, s, hc = _setup(_arr({"zone": "RWS", "state": "closed", "position": [0.15, 0.10]}, {"zone": "RWS", "state": "empty"}),
+                      profile="active", script=script)
+    hc.run(2.0, robot=s.tick)
+    assert hc.events("start") == []                           # nothing held yet: the first step waits
+    s.grasp_at("bottle")
+    t_hold = w.time
+    s.carry_to((-0.06, -0.03, layout.TABLE_Z + 0.03))
+    _ok(_run_until_done(hc, s, 20.0, "pull_stopper"), "pull_stopper")
+    assert hc.events("start")[0].t >= t_hold + hc.profile.reaction_delay - 1e-6
+    hc.run(2.0, robot=s.tick)
+    assert [e.what for e in hc.events("start")] == ["pull_stopper"]   # the second step waits for its words
+    t_said = w.time
+    hc.hear("inform:fill_glass", t_said)
+    _ok(_run_until_done(hc, s, 10.0, "request"), "request")
+    assert hc.events("start")[1].t >= t_said + hc.profile.reaction_delay - 1e-6
