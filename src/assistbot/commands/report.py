@@ -1,0 +1,25 @@
+"""`assistbot report DIR`: a sweep's summary tables (with confidence intervals), plots and Markdown."""
+
+from __future__ import annotations
+
+import argparse
+from pathlib import Path
+
+NAME = "report"
+HELP = "summarise a sweep folder: success rate and time to drink per parameter value with CIs, plots, report.md"
+ORDER = 35
+
+
+def add_arguments(p: argparse.ArgumentParser) -> None:
+    p.add_argument("dir", type=Path, metavar="DIR", help="a sweep's results folder (holding results.csv)")
+    p.add_argument("--out", type=Path, default=None, help="where to write the report (default: DIR/report)")
+
+
+def run(args: argparse.Namespace) -> int:
+    from assistbot.sweep.report import write_report
+
+    paths = write_report(args.dir, args.out)
+    print(f"report: {paths[0]}")
+    for p in paths[1:]:
+        print(f"  {p}")
+    return 0

@@ -1,0 +1,233 @@
+"""`assistbot report DIR`: a sweep's results as tables with confidence intervals, plots and Markdown.
+
+Writes into DIR/report/ (or ``out``):
+
+    report.md                    the summary: overall, one table per parameter, heatmaps, decision sequences
+    summary.csv                  every table row of report.md (factor, value, n, rate with its Wilson CI, ...)
+    success_vs_<path>.png        success rate (Wilson 95% CI) and time to drink (t 95% CI) per value
+    heatmap_<path1>__<path2>.png success rate over two parameters, each cell annotated with its n
+
+A parameter's table pools every other parameter and every seed: it is the marginal effect.
+"""
+
+from __future__ import annotations
+
+import csv
+import itertools
+import math
+from collections import Counter, defaultdict
+from pathlib import Path
+from typing import Any
+
+from assistbot.errors import UserError
+from assistbot.sweep.results import param_columns, parse_value, read_rows
+from assistbot.sweep.stats import Cell
+
+TEXT_COLUMNS = ("job_id", "scenario", "perception", "end_reason", "decisions", "scenario_sha")
+MAX_HEATMAPS = 6
+
+
+def load_results(results_dir: str | Path) -> tuple[list[str], list[dict[str, Any]]]:
+    """(swept paths, typed rows) of a sweep folder (or of a results.csv file)."""
+    d = Path(results_dir)
+    path = d if d.suffix == ".csv" else d / "results.csv"
+    if not path.exists():
+        raise UserError(str(d), "results.csv", "not found; run 'assistbot sweep ... --out DIR' first")
+    header, raw = read_rows(path)
+    if not raw:
+        raise UserError(str(path), "rows", "no finished episodes yet")
+    params = param_columns(header)
+    rows = []
+    for r in raw:
+        rows.append({k: (v if k in TEXT_COLUMNS else parse_value(v)) for k, v in r.items()})
+    return params, rows
+
+
+def _key(v: Any) -> Any:
+    return tuple(v) if isinstance(v, list) else v
+
+
+def _fmt_value(v: Any) -> str:
+    if isinstance(v, float):
+        return f"{v:g}"
+    if isinstance(v, (list, tuple)):
+        return "[" + ", ".join(_fmt_value(c) for c in v) + "]"
+    return str(v)
+
+
+def _ordered(values: list[Any]) -> list[Any]:
+    uniq = list(dict.fromkeys(_key(v) for v in values))
+    if all(isinstance(v, (int, float)) and not isinstance(v, bool) for v in uniq):
+        return sorted(uniq)
+    return uniq
+
+
+def _numeric(values: list[Any]) -> bool:
+    return all(isinstance(v, (int, float)) and not isinstance(v, bool) for v in values)
+
+
+def _f(x: float, digits: int = 2) -> str:
+    return "–" if x is None or (isinstance(x, float) and math.isnan(x)) else f"{x:.{digits}f}"
+
+
+def _ci(lo: float, hi: float, digits: int = 2) -> str:
+    return "–" if math.isnan(lo) or math.isnan(hi) else f"[{lo:.{digits}f}, {hi:.{digits}f}]"
+
+
+def _safe(path: str) -> str:
+    return "".join(c if c.isalnum() or c in "._-" else "_" for c in path)
+
+
+def table_rows(rows: list[dict], factor: str) -> list[tuple[Any, Cell]]:
+    groups: dict[Any, list[dict]] = defaultdict(list)
+    for r in rows:
+        groups[_key(r.get(factor))].append(r)
+    return [(v, Cell.of(groups[v])) for v in _ordered([r.get(factor) for r in rows])]
+
+
+def _markdown_table(factor: str, cells: list[tuple[Any, Cell]]) -> list[str]:
+    out = [f"| {factor} | n | drank | success rate | 95% CI (Wilson) | time to drink (s) | 95% CI (t) | errors communicated | spilled |",
+           "|---|---:|---:|---:|---|---:|---|---:|---:|"]
+    for v, c in cells:
+        out.append(f"| {_fmt_value(v)} | {c.n} | {c.successes} | {_f(c.rate)} | {_ci(c.rate_low, c.rate_high)} | "
+                   f"{_f(c.ttd_mean, 1)} | {_ci(c.ttd_low, c.ttd_high, 1)} | {_f(c.errors_mean)} | {_f(c.spilled_mean, 3)} |")
+    return out
+
+
+def _plot_param(rows: list[dict], param: str, scenarios: list[str], path: Path) -> None:
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    values = _ordered([r.get(param) for r in rows])
+    numeric = _numeric(values)
+    xs_of = {v: (v if numeric else i) for i, v in enumerate(values)}
+    fig, (ax1, ax2) = plt.subplots(1, 2, figsize=(10, 3.8), constrained_layout=True)
+    groups = [(s, [r for r in rows if r["scenario"] == s]) for s in scenarios] if len(scenarios) > 1 else [("all", rows)]
+    for label, grp in groups:
+        cells = [(v, c) for v, c in table_rows(grp, param)]
+        xs = [xs_of[v] for v, _ in cells]
+        rate = [c.rate for _, c in cells]
+        err = [[c.rate - c.rate_low for _, c in cells], [c.rate_high - c.rate for _, c in cells]]
+        ax1.errorbar(xs, rate, yerr=err, marker="o", capsize=4, label=label if len(groups) > 1 else None)
+        ttd = [(xs_of[v], c) for v, c in cells if not math.isnan(c.ttd_mean)]
+        if ttd:
+            tx = [x for x, _ in ttd]
+            ty = [c.ttd_mean for _, c in ttd]
+            terr = [[0 if math.isnan(c.ttd_low) else c.ttd_mean - c.ttd_low for _, c in ttd],
+                    [0 if math.isnan(c.ttd_high) else c.ttd_high - c.ttd_mean for _, c in ttd]]
+            ax2.errorbar(tx, ty, yerr=terr, marker="s", capsize=4, label=label if len(groups) > 1 else None)
+    ax1.set_ylim(-0.05, 1.05)
+    ax1.set_ylabel("success rate (95% Wilson CI)")
+    ax2.set_ylabel("time to drink, s (mean, 95% CI)")
+    if not ax2.lines:
+        ax2.text(0.5, 0.5, "no episode drank", ha="center", va="center", transform=ax2.transAxes, color="grey")
+    for ax in (ax1, ax2):
+        ax.set_xlabel(param)
+        ax.grid(alpha=0.3)
+        if not numeric:
+            ax.set_xticks(range(len(values)), [_fmt_value(v) for v in values], rotation=20)
+        if len(groups) > 1:
+            ax.legend(fontsize=8)
+    fig.suptitle(f"success vs {param} (n = {len(rows)} episodes; other parameters and seeds pooled)", fontsize=10)
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+
+
+def _plot_heatmap(rows: list[dict], p1: str, p2: str, path: Path) -> None:
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    import numpy as np
+
+    v1, v2 = _ordered([r.get(p1) for r in rows]), _ordered([r.get(p2) for r in rows])
+    rate = np.full((len(v2), len(v1)), np.nan)
+    count = np.zeros((len(v2), len(v1)), dtype=int)
+    groups: dict[tuple, list[dict]] = defaultdict(list)
+    for r in rows:
+        groups[(_key(r.get(p1)), _key(r.get(p2)))].append(r)
+    for (a, b), grp in groups.items():
+        i, j = v2.index(b), v1.index(a)
+        c = Cell.of(grp)
+        rate[i, j], count[i, j] = c.rate, c.n
+    fig, ax = plt.subplots(figsize=(1.2 * len(v1) + 3, 0.8 * len(v2) + 2.2), constrained_layout=True)
+    im = ax.imshow(rate, origin="lower", cmap="viridis", vmin=0, vmax=1, aspect="auto")
+    for i in range(len(v2)):
+        for j in range(len(v1)):
+            if count[i, j]:
+                ax.text(j, i, f"{rate[i, j]:.2f}\nn={count[i, j]}", ha="center", va="center", fontsize=8,
+                        color="white" if rate[i, j] < 0.6 else "black")
+    ax.set_xticks(range(len(v1)), [_fmt_value(v) for v in v1])
+    ax.set_yticks(range(len(v2)), [_fmt_value(v) for v in v2])
+    ax.set_xlabel(p1)
+    ax.set_ylabel(p2)
+    fig.colorbar(im, ax=ax, label="success rate")
+    ax.set_title(f"success rate over {p1} x {p2}", fontsize=10)
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+
+
+def write_report(results_dir: str | Path, out: str | Path | None = None) -> list[Path]:
+    """Write report.md, summary.csv and the plots; return the written paths (report.md first)."""
+    results_dir = Path(results_dir)
+    params, rows = load_results(results_dir)
+    out_dir = Path(out) if out is not None else (results_dir.parent if results_dir.suffix == ".csv" else results_dir) / "report"
+    out_dir.mkdir(parents=True, exist_ok=True)
+    scenarios = list(dict.fromkeys(r["scenario"] for r in rows))
+    factors = (["scenario"] if len(scenarios) > 1 else []) + params
+    varied = [p for p in params if len(_ordered([r.get(p) for r in rows])) > 1]
+    written: list[Path] = []
+    overall = Cell.of(rows)
+    seeds = sorted({r["seed"] for r in rows if r.get("seed") is not None})
+    perceptions = sorted({r.get("perception") or "?" for r in rows})
+    md = [f"# Sweep report: {results_dir}", "",
+          f"{len(rows)} episodes; scenarios: {', '.join(scenarios)}; perception: {', '.join(perceptions)}; "
+          f"seeds: {len(seeds)} ({', '.join(str(s) for s in seeds[:10])}{', ...' if len(seeds) > 10 else ''}).", "",
+          f"**Overall:** {overall.successes}/{overall.n} drank, success rate {_f(overall.rate)} "
+          f"{_ci(overall.rate_low, overall.rate_high)} (95% Wilson); "
+          + (f"time to drink {_f(overall.ttd_mean, 1)} s {_ci(overall.ttd_low, overall.ttd_high, 1)} "
+             "(95% t, over the episodes that drank)." if overall.successes else "no episode drank."), "",
+          "Each table pools the other parameters and all seeds (the marginal effect of one parameter).", ""]
+    summary: list[list[Any]] = []
+    for factor in factors:
+        cells = table_rows(rows, factor)
+        md += [f"## {factor}", ""] + _markdown_table(factor, cells) + [""]
+        for v, c in cells:
+            summary.append([factor, _fmt_value(v), c.n, c.successes, c.rate, c.rate_low, c.rate_high,
+                            c.ttd_mean, c.ttd_low, c.ttd_high, c.errors_mean, c.spilled_mean])
+        if factor in varied:
+            png = out_dir / f"success_vs_{_safe(factor)}.png"
+            _plot_param(rows, factor, scenarios, png)
+            written.append(png)
+            md += [f"![success vs {factor}]({png.name})", ""]
+    pairs = list(itertools.combinations(varied, 2))[:MAX_HEATMAPS]
+    if pairs:
+        md += ["## Heatmaps", ""]
+        if len(scenarios) > 1:
+            md += ["(all scenarios pooled)", ""]
+    for p1, p2 in pairs:
+        png = out_dir / f"heatmap_{_safe(p1)}__{_safe(p2)}.png"
+        _plot_heatmap(rows, p1, p2, png)
+        written.append(png)
+        md += [f"![success over {p1} x {p2}]({png.name})", ""]
+    seqs = Counter(r.get("decisions") or "(none)" for r in rows)
+    md += ["## Decision sequences (AEL)", "", "| sequence | episodes | drank |", "|---|---:|---:|"]
+    for seq, n in seqs.most_common(10):
+        drank = sum(1 for r in rows if (r.get("decisions") or "(none)") == seq and r.get("success") is True)
+        md.append(f"| {seq} | {n} | {drank} |")
+    md += ["", "## End reasons", "", "| end reason | episodes |", "|---|---:|"]
+    for reason, n in Counter(r.get("end_reason") or "?" for r in rows).most_common():
+        md.append(f"| {reason} | {n} |")
+    md.append("")
+    report = out_dir / "report.md"
+    report.write_text("\n".join(md), encoding="utf-8")
+    summary_path = out_dir / "summary.csv"
+    with open(summary_path, "w", encoding="utf-8", newline="") as fh:
+        w = csv.writer(fh, lineterminator="\n")
+        w.writerow(["factor", "value", "n", "drank", "success_rate", "rate_low", "rate_high", "time_to_drink_mean",
+                    "time_to_drink_low", "time_to_drink_high", "errors_communicated_mean", "spilled_mean"])
+        for r in summary:
+            w.writerow(["" if isinstance(x, float) and math.isnan(x) else (round(x, 6) if isinstance(x, float) else x) for x in r])
+    return [report, summary_path] + written

@@ -1,0 +1,69 @@
+"""Confidence intervals for a sweep's summary: Wilson for success rates, Student t for means."""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import Sequence
+
+
+def wilson(successes: int, n: int, confidence: float = 0.95) -> tuple[float, float]:
+    """Wilson score interval of a binomial proportion; (0, 1) when n = 0.
+
+    Unlike the normal approximation it stays inside [0, 1] and is sensible for 0 or n successes
+    out of a few episodes, which is what a sweep cell usually holds.
+    """
+    if n <= 0:
+        return (0.0, 1.0)
+    from scipy.stats import norm
+
+    z = float(norm.ppf(0.5 + confidence / 2))
+    p = successes / n
+    denom = 1 + z * z / n
+    centre = (p + z * z / (2 * n)) / denom
+    half = z / denom * math.sqrt(p * (1 - p) / n + z * z / (4 * n * n))
+    return (max(0.0, centre - half), min(1.0, centre + half))
+
+
+def mean_ci(values: Sequence[float], confidence: float = 0.95) -> tuple[float, float, float]:
+    """(mean, low, high) with a Student t interval; NaN bounds with fewer than two values, NaN mean with none."""
+    xs = [float(v) for v in values if v is not None and math.isfinite(float(v))]
+    if not xs:
+        return (math.nan, math.nan, math.nan)
+    m = sum(xs) / len(xs)
+    if len(xs) < 2:
+        return (m, math.nan, math.nan)
+    from scipy.stats import t
+
+    sd = math.sqrt(sum((x - m) ** 2 for x in xs) / (len(xs) - 1))
+    half = float(t.ppf(0.5 + confidence / 2, len(xs) - 1)) * sd / math.sqrt(len(xs))
+    return (m, m - half, m + half)
+
+
+@dataclass
+class Cell:
+    """The episodes that share one value (or one pair of values) of the swept parameters."""
+
+    n: int
+    successes: int
+    rate: float
+    rate_low: float
+    rate_high: float
+    ttd_mean: float  # time to drink, over the episodes that drank
+    ttd_low: float
+    ttd_high: float
+    errors_mean: float
+    spilled_mean: float
+
+    @classmethod
+    def of(cls, rows: Sequence[dict]) -> "Cell":
+        n = len(rows)
+        s = sum(1 for r in rows if r.get("success") is True)
+        lo, hi = wilson(s, n)
+        ttd = mean_ci([r["time_to_drink"] for r in rows if r.get("success") is True and r.get("time_to_drink") is not None])
+        errs = [float(r["errors_communicated"]) for r in rows if r.get("errors_communicated") is not None]
+        spill = [float(r["spilled_fraction"]) for r in rows if r.get("spilled_fraction") is not None]
+        return cls(n=n, successes=s, rate=s / n if n else math.nan, rate_low=lo, rate_high=hi,
+                   ttd_mean=ttd[0], ttd_low=ttd[1], ttd_high=ttd[2],
+                   errors_mean=sum(errs) / len(errs) if errs else math.nan,
+                   spilled_mean=sum(spill) / len(spill) if spill else math.nan)
