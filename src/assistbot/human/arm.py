@@ -20,6 +20,8 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
+import math
+
 import mujoco
 import numpy as np
 
@@ -37,6 +39,7 @@ LIFT_BELOW_Z = 0.84
 MAX_JOINT_SPEED = 1.2       # rad/s, any arm joint
 MIN_DURATION = 0.4          # s, shortest reach
 ANGULAR_SPEED = 1.0         # rad/s mean hand rotation speed of a reach
+SETTLED_STEP = 1e-6         # rad: an IK step below this at rest ends the IK until the next motion
 
 
 def _rot(z_axis, y_axis) -> np.ndarray:
@@ -90,8 +93,8 @@ def grip_orientation(kind: str, target) -> np.ndarray:
 
 def _log_rot(R: np.ndarray) -> np.ndarray:
     """Rotation vector of R (axis * angle)."""
-    c = np.clip((np.trace(R) - 1.0) / 2.0, -1.0, 1.0)
-    a = np.arccos(c)
+    c = min(1.0, max(-1.0, (R[0, 0] + R[1, 1] + R[2, 2] - 1.0) * 0.5))
+    a = math.acos(c)
     w = np.array([R[2, 1] - R[1, 2], R[0, 2] - R[2, 0], R[1, 0] - R[0, 1]])
     if a < 1e-6:
         return 0.5 * w
@@ -100,16 +103,22 @@ def _log_rot(R: np.ndarray) -> np.ndarray:
         k = np.argmax(np.diag(R))
         v = R[:, k] + np.eye(3)[k]
         return a * v / np.linalg.norm(v)
-    return a / (2.0 * np.sin(a)) * w
+    return (a / (2.0 * math.sin(a))) * w
+
+
+def _skew(k: np.ndarray) -> np.ndarray:
+    return np.array([[0.0, -k[2], k[1]], [k[2], 0.0, -k[0]], [-k[1], k[0], 0.0]])
 
 
 def _exp_rot(w: np.ndarray) -> np.ndarray:
-    a = np.linalg.norm(w)
+    a = float(np.linalg.norm(w))
     if a < 1e-9:
         return np.eye(3)
-    k = w / a
-    K = np.array([[0, -k[2], k[1]], [k[2], 0, -k[0]], [-k[1], k[0], 0]])
-    return np.eye(3) + np.sin(a) * K + (1 - np.cos(a)) * K @ K
+    K = _skew(w / a)
+    return _I3 + math.sin(a) * K + (1.0 - math.cos(a)) * (K @ K)
+
+
+_I3 = np.eye(3)
 
 
 def min_jerk(s: float) -> float:
@@ -127,9 +136,16 @@ class Segment:
     R0: np.ndarray
     dw: np.ndarray          # rotation vector from R0 to R1 (world frame)
 
+    def __post_init__(self) -> None:
+        self._dp = self.p1 - self.p0
+        self._angle = float(np.linalg.norm(self.dw))
+        K = _skew(self.dw / self._angle) if self._angle > 1e-9 else np.zeros((3, 3))
+        self._K, self._K2 = K @ self.R0, (K @ K) @ self.R0
+
     def at(self, t: float) -> tuple[np.ndarray, np.ndarray]:
         s = min_jerk((t - self.t0) / self.duration)
-        return self.p0 + s * (self.p1 - self.p0), _exp_rot(s * self.dw) @ self.R0
+        a = s * self._angle
+        return self.p0 + s * self._dp, self.R0 + math.sin(a) * self._K + (1.0 - math.cos(a)) * self._K2
 
     def done(self, t: float) -> bool:
         return t >= self.t0 + self.duration
@@ -160,6 +176,11 @@ class HumanArm:
         self._hi = self.m.jnt_range[:, 1].copy()
         self._jacp = np.zeros((3, self.m.nv))
         self._jacr = np.zeros((3, self.m.nv))
+        self._J = np.zeros((6, self.m.nv))
+        self._A = np.zeros((6, 6))
+        self._e = np.zeros(6)
+        self._y = np.zeros(6)
+        self._diag = np.diag_indices(6)
         self.clamped: list[tuple[float, tuple[float, float, float], tuple[float, float, float]]] = []
         self.posture = "open"
         self.reset()
@@ -171,6 +192,7 @@ class HumanArm:
         self.q_rest = self.q.copy()
         self.segment: Segment | None = None
         self.segments: list[Segment] = []
+        self._settled = False
         p, R = self.fk(self.q)
         self.p_goal, self.R_goal = p, R
         self.R_rest = R          # the hand's orientation at rest (a relaxed wrist)
@@ -219,6 +241,7 @@ class HumanArm:
         segs.append(Segment(t0, float(duration), p0, p1, R0, dw))
         self.segments = segs
         self.segment = segs[-1]
+        self._settled = False
         self.p_goal, self.R_goal = p1, R1
         return float(t0 + duration - t)
 
@@ -244,6 +267,9 @@ class HumanArm:
     # ------------------------------------------------------------------ control tick
     def tick(self, t: float, iterations: int = 1) -> None:
         """One control tick at time t: follow the segment with IK and command the servos."""
+        moving = self.segment is not None and not self.segment.done(t)
+        if not moving and self._settled:
+            return  # holding still at the goal: the servo targets stand
         if self.segment is not None:
             seg = next((g for g in self.segments if not g.done(t + self.dt)), self.segment)
             p_t, R_t = seg.at(t + self.dt)
@@ -252,21 +278,26 @@ class HumanArm:
         q = self.q
         max_step = MAX_JOINT_SPEED * self.dt
         m, d = self.m, self.d
+        J, A, e, y = self._J, self._A, self._e, self._y
         for _ in range(iterations):
             d.qpos[:] = q
             mujoco.mj_kinematics(m, d)
             mujoco.mj_comPos(m, d)
             mujoco.mj_jacSite(m, d, self._jacp, self._jacr, self._site)
             p, R = d.site_xpos[self._site], d.site_xmat[self._site].reshape(3, 3)
-            e = np.concatenate([p_t - p, 0.4 * _log_rot(R_t @ R.T)])
-            J = np.vstack([self._jacp, 0.4 * self._jacr])
-            # damped least squares, with a weak pull toward the rest posture in the null space
-            JJt = J @ J.T
-            JJt[np.diag_indices(6)] += 4e-4
-            sol = np.linalg.solve(JJt, np.column_stack([e, J]))
+            e[:3] = p_t - p
+            e[3:] = 0.4 * _log_rot(R_t @ R.T)
+            J[:3] = self._jacp
+            J[3:] = 0.4 * self._jacr
+            # damped least squares with a weak pull r toward the rest posture in the null space:
+            # dq = J'(JJ' + l I)^-1 e + (I - J'(JJ' + l I)^-1 J) r = r + J'(JJ' + l I)^-1 (e - J r)
+            np.matmul(J, J.T, out=A)
+            A[self._diag] += 4e-4
             r = 0.02 * (self.q_rest - q)
-            dq = J.T @ sol[:, 0] + r - J.T @ (sol[:, 1:] @ r)
-            q = np.clip(q + dq, self._lo, self._hi)
-        step = np.clip(q - self.q, -max_step, max_step)
-        self.q = np.clip(self.q + step, self._lo, self._hi)
+            mujoco.mju_cholFactor(A, 0.0)
+            mujoco.mju_cholSolve(y, A, e - J @ r)
+            q = np.minimum(np.maximum(q + r + J.T @ y, self._lo), self._hi)
+        step = np.minimum(np.maximum(q - self.q, -max_step), max_step)
+        self.q = np.minimum(np.maximum(self.q + step, self._lo), self._hi)
+        self._settled = not moving and float(np.abs(step).max()) < SETTLED_STEP
         self.world.data.ctrl[self._act] = self.q

@@ -27,6 +27,11 @@ from assistbot.human.perception import RobotView, see_robot
 from assistbot.human.profiles import PROFILES, Profile
 from assistbot.human.script import HumanConfig, Step
 
+#: s between two looks at the robot (a person's eyes sample the scene ~10 times a second)
+LOOK_PERIOD = 0.1
+#: s between two consultations of the default policy while idle
+DECISION_PERIOD = 0.1
+
 
 @dataclass(frozen=True)
 class Event:
@@ -62,6 +67,8 @@ class HumanController:
         self.view: RobotView = see(world)
         self._seen: set[str] = set()
         self._pending: list[tuple[str, dict]] = []           # responses waiting to start
+        self._next_look = 0.0                                # next time the robot is looked at
+        self._next_decision = 0.0                            # next time the default policy is consulted
         self._n_clamped = 0
         self.policy_state: dict = {}
 
@@ -74,7 +81,9 @@ class HumanController:
         self.log.append(Event(self.t, "note", what, dict(detail or {})))
 
     def _perceive(self, t: float) -> None:
-        self._views.append((t, self.see(self.world)))
+        if t >= self._next_look - 1e-9:
+            self._views.append((t, self.see(self.world)))
+            self._next_look = t + LOOK_PERIOD
         delay = self.profile.reaction_delay
         while len(self._views) > 1 and self._views[1][0] <= t - delay + 1e-9:
             self._views.popleft()
@@ -160,7 +169,8 @@ class HumanController:
                 self.script.pop(0)
                 self.start(step.behaviour, **step.behaviour_args(self.profile))
             return
-        if self.profile.initiative and not self._scripted:
+        if self.profile.initiative and not self._scripted and self.t >= self._next_decision - 1e-9:
+            self._next_decision = self.t + DECISION_PERIOD
             move = policy.next_move(self)
             if move is not None:
                 self.start(move[0], **move[1])

@@ -10,6 +10,7 @@ signature (e.g. for a stand-in robot).
 
 from __future__ import annotations
 
+import weakref
 from dataclasses import dataclass
 
 import numpy as np
@@ -40,13 +41,24 @@ class RobotView:
         return self.held_out and self.open_hand and self.holds is None
 
 
+_INDEX: "weakref.WeakKeyDictionary[object, tuple[int, np.ndarray]]" = weakref.WeakKeyDictionary()
+
+
+def _index(world) -> tuple[int, np.ndarray]:
+    """(tcp site id, finger joint qpos addresses) of a world, looked up once."""
+    got = _INDEX.get(world)
+    if got is None:
+        m = world.model
+        qadr = np.array([m.jnt_qposadr[m.actuator_trnid[m.actuator(a).id, 0]]
+                         for a in ("robot_finger1", "robot_finger2", "robot_finger3")])
+        got = _INDEX[world] = (world.site_id["robot_tcp"], qadr)
+    return got
+
+
 def see_robot(world) -> RobotView:
-    m, d = world.model, world.data
-    tcp = d.site_xpos[world.site_id["robot_tcp"]]
-    flex = []
-    for a in ("robot_finger1", "robot_finger2", "robot_finger3"):
-        j = m.actuator_trnid[m.actuator(a).id, 0]
-        flex.append(d.qpos[m.jnt_qposadr[j]])
+    tcp_id, finger_qadr = _index(world)
+    d = world.data
+    tcp = d.site_xpos[tcp_id]
     holds = world.robot_holding()
     return RobotView(holds, (float(tcp[0]), float(tcp[1]), float(tcp[2])), bool(abs(tcp[0]) < HELD_OUT_X),
-                     bool(holds is None and float(np.max(flex)) < OPEN_FINGERS))
+                     bool(holds is None and float(d.qpos[finger_qadr].max()) < OPEN_FINGERS))
