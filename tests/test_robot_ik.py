@@ -50,3 +50,21 @@ def test_gaze_points_down_at_the_table():
     assert abs(pan) < 1e-9 and 0.9 < tilt < 1.2
     pan, _ = gaze_angles(np.array([0.65, 0, 1.46]), np.array([0.65, -0.5, 0.75]))
     assert pan > 1.0  # a point on the robot's right (-y) turns the head toward -y
+
+
+def test_ik_model_agrees_with_the_world():
+    """The reduced IK model is the world's scene: same shoulder, same joint ranges, same TCP at a posture."""
+    import mujoco
+
+    from assistbot.robot.ik_model import ARM_JOINTS
+    from assistbot.world import Arrangement, build_world
+
+    w = build_world(Arrangement.from_options("HWS:closed", "RWS:inverted"))
+    ik = ArmIK()
+    m = w.model
+    assert np.allclose(ik.shoulder, w.data.xpos[m.body("robot_link1").id])
+    for k, j in enumerate(ARM_JOINTS):
+        assert np.allclose(ik.model.jnt_range[k], m.jnt_range[m.joint(j).id])
+        w.data.qpos[m.jnt_qposadr[m.joint(j).id]] = READY_POSTURE[k]
+    mujoco.mj_forward(m, w.data)
+    assert np.allclose(ik.tcp_pose(READY_POSTURE).translation(), w.data.site("robot_tcp").xpos, atol=1e-6)

@@ -118,6 +118,24 @@ def test_bottle_held_for_the_stopper_lets_a_15N_pull_take_it_off(bottle):
     assert_safe(s)
 
 
+def test_the_scripted_human_pulls_the_stopper_off_the_bottle_the_robot_holds():
+    w, robot = make("RWS:closed@0.18,0.10", "HWS:empty")
+    human = HumanController(w, "passive")
+    prim = P.HoldBottleForStopper(robot, stopper_removed=lambda: not w.data.eq_active[w.eq_stopper])
+
+    def tick(t):
+        if human.current is None and not human.done and prim.progress.phase == "hold steady for the stopper":
+            human.start("pull_stopper")
+        human.tick(t)
+
+    pr, s = run(w, prim, body_xy(w, "bottle"), seconds=45.0, each_tick=tick)
+    assert pr.status is Status.SUCCEEDED, pr.reason
+    assert human.done and human.done[0].status == "success", human.done and human.done[0].reason
+    st = w.state()
+    assert st.bottle_open and st.objects["bottle"].zone == "RWS" and upright(w, "bottle")
+    assert_safe(s)
+
+
 def test_stopper_hold_times_out_with_a_reason():
     w, robot = make("RWS:closed", "HWS:empty")
     prim = P.HoldBottleForStopper(robot, timeout=2.0)

@@ -53,6 +53,8 @@ class Gripper:
         for part, geoms in FINGER_GEOMS.items():
             for g in geoms:
                 self._part_of_geom[model.geom(g).id] = part
+        self._part_code = np.zeros(model.ngeom, dtype=np.int8)  # 1 for the hand's geoms
+        self._part_code[list(self._part_of_geom)] = 1
         self.command = OPEN
         self._force = np.zeros(6)
 
@@ -78,18 +80,23 @@ class Gripper:
     def touches(self) -> list[Touch]:
         """Bodies in contact with the hand now, with the touching parts and the normal force."""
         m, d = self.model, self.data
+        n = d.ncon
+        if n == 0:
+            return []
+        g1, g2 = d.contact.geom1[:n], d.contact.geom2[:n]
+        p1, p2 = self._part_code[g1], self._part_code[g2]
+        # contacts between a hand part and something that is not the hand
+        sel = np.flatnonzero((p1 > 0) != (p2 > 0))
+        if sel.size == 0:
+            return []
         parts: dict[int, set[str]] = {}
         force: dict[int, float] = {}
-        for i in range(d.ncon):
-            c = d.contact[i]
-            for mine, other in ((c.geom1, c.geom2), (c.geom2, c.geom1)):
-                part = self._part_of_geom.get(int(mine))
-                if part is None or int(other) in self._part_of_geom:
-                    continue
-                body = int(m.geom_bodyid[other])
-                mujoco.mj_contactForce(m, d, i, self._force)
-                parts.setdefault(body, set()).add(part)
-                force[body] = force.get(body, 0.0) + abs(float(self._force[0]))
+        for i in sel:
+            mine, other = (g1[i], g2[i]) if p1[i] > 0 else (g2[i], g1[i])
+            body = int(m.geom_bodyid[other])
+            mujoco.mj_contactForce(m, d, int(i), self._force)
+            parts.setdefault(body, set()).add(self._part_of_geom[int(mine)])
+            force[body] = force.get(body, 0.0) + abs(float(self._force[0]))
         return [Touch(m.body(b).name, frozenset(p), force[b]) for b, p in parts.items()]
 
     def holding(self) -> str | None:

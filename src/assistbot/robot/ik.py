@@ -78,8 +78,32 @@ class ArmIK:
                                          minimum_distance_from_collisions=0.03,
                                          collision_detection_distance=0.1),
         ]
+        # cheap pre-check per collision limit: the arm's bounding spheres against the human's (a lower
+        # bound on the distance), or the hand's/forearm's lowest point against the table top (static)
+        m = self.model
+        gid = lambda names: np.array([m.geom(g).id for g in names])  # noqa: E731
+        d0 = self.configuration.data
+        self._arm_ids, self._arm_r = gid(ARM_GEOMS), m.geom_rbound[gid(ARM_GEOMS)]
+        self._human_ids = gid(HUMAN_BODY_GEOMS)
+        self._human_r = m.geom_rbound[self._human_ids]
+        self._hand_rows = np.isin(self._arm_ids, gid(HAND_GEOMS))
+        t = gid(TABLE_GEOMS)[0]
+        self._table_top = float(d0.geom_xpos[t][2] + np.abs(d0.geom_xmat[t].reshape(3, 3)[2]) @ m.geom_size[t])
+        self._reach = (p.human_clearance + p.detection_distance, p.table_clearance + 0.05, 0.1)
         self.tcp_site = self.model.site("robot_tcp").id
         self.shoulder = self.configuration.data.xpos[self.model.body("robot_link1").id].copy()
+
+    def _active_collision_limits(self) -> list:
+        """The collision limits whose geoms are near enough to matter (the configuration is already updated).
+
+        Each `CollisionAvoidanceLimit` only acts within its detection distance; skipping one whose
+        geoms are certainly farther apart than that changes nothing but the cost of the QP."""
+        xpos = self.configuration.data.geom_xpos
+        pa = xpos[self._arm_ids]
+        gap_h = np.linalg.norm(pa[:, None, :] - xpos[self._human_ids][None], axis=2) - self._arm_r[:, None] - self._human_r[None]
+        low = pa[:, 2] - self._arm_r - self._table_top
+        gaps = (float(gap_h.min()), float(low[self._hand_rows].min()), float(low[~self._hand_rows].min()))
+        return [lim for lim, gap, reach in zip(self.collision_limits, gaps, self._reach) if gap < reach]
 
     def set_posture(self, q: np.ndarray) -> None:
         self.posture_task.set_target(np.asarray(q, float))
@@ -94,7 +118,7 @@ class ArmIK:
         q = np.clip(np.asarray(q, float), self.model.jnt_range[:, 0], self.model.jnt_range[:, 1])
         self.configuration.update(q)
         self.tcp_task.set_target(target)
-        limits = self.base_limits + (self.collision_limits if use_collision else [])
+        limits = self.base_limits + (self._active_collision_limits() if use_collision else [])
         t0 = time.perf_counter()
         try:
             v = mink.solve_ik(self.configuration, [self.tcp_task, self.posture_task], dt, "daqp",

@@ -137,7 +137,7 @@ class WaitFor(Phase):
         self.name, self.condition, self.timeout, self.reason = name, condition, timeout, reason
 
     def tick(self, prim, dt, t):
-        prim.robot.move_toward(prim.robot.commanded_tcp_pose(), dt)
+        prim.robot.hold()
         if self.condition(prim):
             return Status.SUCCEEDED, ""
         if t >= self.timeout:
@@ -214,6 +214,7 @@ class Primitive:
         self.stopper_removed = stopper_removed or (lambda: False)
         self.carrying = False
         self._held_xy: np.ndarray | None = None  # target x, y frozen while the object is in the hand
+        self._peak: np.ndarray | None = None     # the field's peak this control tick
         self._phases: list[Phase] = []
         self._k = 0
         self._t = 0.0
@@ -225,11 +226,21 @@ class Primitive:
         """The target's table position: the target field's peak (fallback: the first perception)."""
         if self._held_xy is not None:
             return self._held_xy
-        peak = self.field.target()
-        return np.array(peak if peak is not None else self._xy0, float)
+        if self._peak is None:  # read the field once per control tick
+            peak = self.field.target()
+            self._peak = np.array(peak if peak is not None else self._xy0, float)
+        return self._peak
 
     def phases(self) -> list[Phase]:
         raise NotImplementedError
+
+    def _look(self) -> None:
+        """Gaze: the head looks at the hand while it carries something, else at the target on the table."""
+        if self.carrying:
+            self.robot.look_at(self.robot.tcp_pose().translation())
+        else:
+            x, y = self.xy()
+            self.robot.look_at(np.array([x, y, TABLE_Z + 0.05]))
 
     # --- running -------------------------------------------------------
     def start(self, target_xy=None) -> None:
@@ -239,6 +250,7 @@ class Primitive:
             # let the field form its peak on the first perception
             self.field.observe(target_xy)
             self.field.advance(0.3)
+        self._peak = None
         self.robot.reset_command()
         self._held_xy = None
         self.carrying = False
@@ -253,6 +265,8 @@ class Primitive:
             return self.progress
         self.field.observe(target_xy)
         self.field.advance(dt)
+        self._peak = None
+        self._look()
         self._t += dt
         self._t_total += dt
         phase = self._phases[self._k]
@@ -420,7 +434,7 @@ class Wait(Phase):
         self.name, self.seconds, self.timeout = name, seconds, seconds + 1.0
 
     def tick(self, prim, dt, t):
-        prim.robot.move_toward(prim.robot.commanded_tcp_pose(), dt)
+        prim.robot.hold()
         return (Status.SUCCEEDED, "") if t >= self.seconds else (Status.RUNNING, "")
 
 
@@ -678,7 +692,7 @@ class Receive(Primitive):
 
     def phases(self):
         return _reach_and_grasp(self, base_z=HUMAN_HOLD_OUT_BASE_Z) + [
-            Wait("hold", 0.5),
+            Wait("hold", 1.5),  # the human feels the robot's grip before letting go
             WaitFor("wait for the human to let go", lambda p: not p.human_holds(), self.timeout,
                     "the human did not let go"),
             Relative("take back", [0.06, 0.0, 0.03], duration=1.0),
