@@ -237,13 +237,19 @@ def test_receive_takes_the_object_from_the_human_hand_and_puts_it_in_rws(obj, ar
 
 
 # --------------------------------------------------------------------------- request, retract, failures
-def test_request_holds_open_hand_near_middle_line():
+@pytest.mark.parametrize("target", [(-0.22, 0.12), (-0.20, -0.25)])
+def test_request_holds_open_hand_near_middle_line(target):
+    from assistbot.human.perception import see_robot
+
     w, robot = make("HWS:closed", "HWS:empty")
-    pr, s = run(w, P.Request(robot, "glass"), lambda: (-0.22, 0.12), seconds=10.0)
+    pr, s = run(w, P.Request(robot, "glass"), lambda: target, seconds=10.0)
     assert pr.status is Status.SUCCEEDED, pr.reason
     palm = w.data.site_xpos[w.model.site("robot_palm_face").id]
     assert abs(palm[0]) < 0.15
     assert robot.gripper.finger_angles().max() < 0.2  # open
+    normal = -w.data.site_xmat[w.model.site("robot_palm_face").id].reshape(3, 3)[:, 0]
+    assert normal[2] > 0.8  # palm up
+    assert see_robot(w).requests  # what the human sees: an open empty hand held out
     assert_safe(s)
 
 

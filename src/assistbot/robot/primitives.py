@@ -9,8 +9,27 @@ primitive's `TargetField`; the field's peak is the x, y the arm goes to,
 while heights and approach orientations come from the primitive.
 
 Every phase has a time limit; a primitive that cannot do its job ends
-FAILED with a reason (unreachable target, IK without solution, nothing in the
-hand, object slipped, human did not take the object).
+FAILED with a reason (unreachable target, target beyond the hand-over zone,
+IK without solution, nothing in the hand, object slipped, human did not take
+the object, stopper not removed, glass not seen).
+
+The primitives (all friction grasps from the side, no welds):
+  ReachAndGrasp, ReachGraspLift   grasp (and lift) an object standing in the RWS
+  TurnGlass                       grasp the inverted glass, roll it 180 deg in the air, put it down upright
+  PlaceInRWS                      grasp, carry, put down upright at ``spot``
+  Pour                            grasp the open bottle, tilt it 140 deg beside and above the glass at
+                                  ``locate("glass")`` (mouth over the glass centre), hold, tilt back,
+                                  put the bottle back where it stood
+  HoldBottleForStopper            grasp the closed bottle, hold it out upright at the middle line, wait
+                                  for ``stopper_removed()``, put it back
+  HandOver, TurnAndHandOver       carry (turn first) and hold out in the hand-over zone; let go once
+                                  ``human_holds()``; withdraw
+  Receive                         grasp what the human holds out (target: the human's hand), wait until
+                                  the human lets go, put it down in the RWS
+  Request, Retract                open hand held out palm up near the middle line; back to rest
+
+Callbacks a caller passes as keywords (every primitive accepts them; see `Primitive.__init__`):
+``human_holds()``, ``locate(name)``, ``stopper_removed()``. They come from perception.
 """
 
 from __future__ import annotations
@@ -537,17 +556,23 @@ class Retract(Primitive):
 
 
 class Request(Primitive):
-    """Hold an open hand out, palm up, near the middle line toward the target object's side (a request)."""
+    """Hold an open hand out, palm up, near the middle line toward the target object's side (a request).
+
+    The palm faces up and toward the human (its normal 60 deg above the horizontal): a fully
+    upturned palm puts the wrist pitch at its limit on the robot's far (-y) side. The hand
+    goes toward the object's side within y in Y_RANGE (the shoulder is on the +y side)."""
 
     name = "request"
     HEIGHT = 0.20  # above the table
+    PALM_UP = math.radians(60)
+    Y_RANGE = (-0.12, 0.30)
 
     def phases(self):
         def goal(p):
-            y = float(np.clip(p.xy()[1], -0.3, 0.3))
+            y = float(np.clip(p.xy()[1], *self.Y_RANGE))
             pos = np.array([0.06, y, TABLE_Z + self.HEIGHT])
-            # palm up: the palm normal (gripper -x) points to world +z
-            rot = poses.side_rotation(pos, p.robot.shoulder) @ mink.SO3.from_y_radians(math.pi / 2)
+            # palm up: the palm normal (gripper -x) turned from horizontal toward world +z
+            rot = poses.side_rotation(pos, p.robot.shoulder) @ mink.SO3.from_y_radians(self.PALM_UP)
             return poses.pose(rot, pos)
         return [_Open("open"), Move("hold out open hand", goal, duration=2.0, tolerance=0.03)]
 
