@@ -9,7 +9,7 @@ rewritten from the CSV every so often, at the end and on interrupt.
 Columns: ``job_id, scenario, <one per swept path>, seed, perception,
 time_limit, success, time_to_drink, end_reason, decisions, n_decisions,
 errors_communicated, spilled_fraction, min_distance_human, sim_time,
-wall_seconds, scenario_sha``. ``decisions`` is the AEL decision sequence
+wall_seconds, cpu_seconds, scenario_sha``. ``decisions`` is the AEL decision sequence
 joined by `` > ``; ``end_reason`` says why an episode ended without a drink.
 """
 
@@ -28,14 +28,16 @@ from assistbot.errors import UserError
 
 HEAD = ["job_id", "scenario"]
 TAIL = ["seed", "perception", "time_limit", "success", "time_to_drink", "end_reason", "decisions", "n_decisions",
-        "errors_communicated", "spilled_fraction", "min_distance_human", "sim_time", "wall_seconds", "scenario_sha"]
+        "errors_communicated", "spilled_fraction", "min_distance_human", "sim_time", "wall_seconds", "cpu_seconds",
+        "scenario_sha"]
 FIXED = HEAD + TAIL
 #: columns that depend on the machine, not on the episode
-VOLATILE = ("wall_seconds",)
+VOLATILE = ("wall_seconds", "cpu_seconds")
 ERROR_COLUMNS = ["job_id", "scenario", "params", "seed", "error", "traceback", "wall_seconds", "when"]
 _TYPES = {"seed": "int64", "time_limit": "float64", "success": "bool_", "time_to_drink": "float64",
           "n_decisions": "int64", "errors_communicated": "int64", "spilled_fraction": "float64",
-          "min_distance_human": "float64", "sim_time": "float64", "wall_seconds": "float64"}
+          "min_distance_human": "float64", "sim_time": "float64", "wall_seconds": "float64",
+          "cpu_seconds": "float64"}
 
 
 def columns_for(param_paths: Iterable[str]) -> list[str]:

@@ -37,7 +37,7 @@ def run_job(job: Job) -> dict[str, Any]:
     from assistbot.episode import run_scenario
     from assistbot.scenario import parse_scenario
 
-    t0 = time.perf_counter()
+    t0, c0 = time.perf_counter(), time.process_time()
     row: dict[str, Any] = {"job_id": job.id, "scenario": job.scenario, **job.params, "seed": job.seed,
                            "perception": job.perception, "time_limit": job.time_limit}
     try:
@@ -64,5 +64,6 @@ def run_job(job: Job) -> dict[str, Any]:
         sim_time=float(s["time"]),
         scenario_sha=job.scenario_sha,
         wall_seconds=round(time.perf_counter() - t0, 3),
+        cpu_seconds=round(time.process_time() - c0, 3),  # < wall_seconds: the worker waited for a CPU
     )
     return row
