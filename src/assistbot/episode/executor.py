@@ -64,7 +64,17 @@ class RobotExecutor:
 
     def _human_holds(self, obj: str | None) -> bool:
         p = self._percept
-        return bool(p is not None and p.hand.seen and p.hand.object_in_hand == obj)
+        if p is None or not p.hand.seen:
+            return False
+        if obj == "held_out":
+            return p.hand.object_in_hand is not None
+        return p.hand.object_in_hand == obj
+
+    def _stopper_removed(self) -> bool:
+        """Seen, not known: the bottle looks open."""
+        p = self._percept
+        b = p.objects.get("bottle") if p is not None else None
+        return bool(b is not None and b.seen and b.state == "open")
 
     # -- decisions -----------------------------------------------------------------------------
     def begin(self, action: str, t: float, utterance: str = "") -> None:
@@ -79,7 +89,8 @@ class RobotExecutor:
             self._speech_until = t + (WAIT_SECONDS if action == "Wait" else reading_time(utterance or action))
             return
         cls, obj = spec
-        self.primitive = cls(self.robot, obj, human_holds=lambda o=obj: self._human_holds(o))
+        self.primitive = cls(self.robot, obj, human_holds=lambda o=obj: self._human_holds(o),
+                             locate=self._target_xy, stopper_removed=self._stopper_removed)
         self.primitive.start(self._target_xy(obj))
 
     def see(self, percept: Percept) -> None:

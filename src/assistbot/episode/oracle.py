@@ -24,6 +24,8 @@ def _hand_truth(world, human) -> dict:
     hand = world.site_pos("human_r_grasp")
     xyz = [float(hand[0]), float(hand[1]), float(hand[2] - TABLE_Z)]
     holding = world.human_holding()
+    if holding not in ("bottle", "glass"):
+        holding = None  # the stopper in hand is part of removing it, not an object of the task
     posture = human.arm.posture
     behaviour = human.current.name if human.current is not None else None
     args = human.current.args if human.current is not None else {}
