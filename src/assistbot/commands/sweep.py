@@ -106,6 +106,9 @@ def run(args: argparse.Namespace) -> int:
     rate = f", {60 * outcome.ran / outcome.seconds:.1f} episodes/min" if outcome.ran and outcome.seconds > 0 else ""
     print(f"sweep: {outcome.skipped + outcome.ran} of {outcome.total} episodes in {out}/results.csv "
           f"({outcome.ran} run now, {outcome.succeeded} drank{rate})")
+    if outcome.aborted:
+        sys.stderr.write(f"sweep stopped: {outcome.aborted}; see {out}/errors.csv\n")
+        return 1
     if outcome.crashed:
         sys.stderr.write(f"{outcome.crashed} episodes raised (see {out}/errors.csv); the same command runs them again:\n")
         for line in outcome.crashes:

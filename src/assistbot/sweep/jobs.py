@@ -97,13 +97,19 @@ def build_jobs(spec: SweepSpec) -> list[Job]:
     from assistbot.sweep.spec import check_value
 
     jobs: list[Job] = []
-    seen: set[str] = set()
     paths = [p.path for p in spec.params]
     grid = list(itertools.product(*(p.values for p in spec.params))) if spec.params else [()]
+    names: dict[str, tuple[str, str]] = {}  # scenario name -> (as given, content hash)
     for name in spec.scenarios:
         scenario = load_scenario(name)
         base = copy.deepcopy(scenario.raw)
         sha = scenario_sha(base)
+        if scenario.name in names:
+            if names[scenario.name][1] == sha:
+                continue  # the same scenario named twice
+            raise UserError(spec.source, name, f"is also named {scenario.name!r}, like {names[scenario.name][0]}; "
+                            "rows are told apart by scenario name: give one of them another name")
+        names[scenario.name] = (name, sha)
         tl = float(spec.time_limit if spec.time_limit is not None else scenario.time_limit)
         points = []
         for combo in grid:
@@ -118,9 +124,6 @@ def build_jobs(spec: SweepSpec) -> list[Job]:
         for seed in spec.seeds_for(scenario.seed):
             for values, data, overrides in points:
                 jid = job_id(scenario.name, values, seed, spec.perception, tl)
-                if jid in seen:  # the same scenario named twice
-                    continue
-                seen.add(jid)
                 jobs.append(Job(id=jid, scenario=scenario.name, params=values, seed=seed, perception=spec.perception,
                                 time_limit=tl, scenario_data=data,
                                 scenario_path=str(scenario.path) if scenario.path else None,

@@ -32,13 +32,18 @@ class SweepOutcome:
     crashed: int = 0  # raised (in errors.csv, to run again)
     succeeded: int = 0  # of those that ran now
     interrupted: bool = False
+    aborted: str = ""  # why the sweep stopped early (every episode so far raised)
     seconds: float = 0.0
     executor: str = ""
     crashes: list[str] = field(default_factory=list)
 
     @property
     def complete(self) -> bool:
-        return not self.interrupted and self.skipped + self.ran == self.total
+        return not self.interrupted and not self.aborted and self.skipped + self.ran == self.total
+
+
+#: stop when this many episodes have raised and none has finished: the code, not the parameters, is broken
+ABORT_AFTER = 4
 
 
 def check_perception(perception: str) -> None:
@@ -118,6 +123,10 @@ def run_sweep(spec: SweepSpec, out: str | Path, executor=None, progress: bool = 
                     store.append_error(row)
                     if len(outcome.crashes) < 5:
                         outcome.crashes.append(f"{row['job_id']}: {row.get('error')}")
+                    if outcome.crashed >= min(ABORT_AFTER, len(pending)) and outcome.ran == 0 and not done:
+                        outcome.aborted = (f"the first {outcome.crashed} episodes all raised (last: {row.get('error')}); "
+                                           "stopped rather than run the rest the same way")
+                        break
                 else:
                     store.append(row)
                     outcome.ran += 1

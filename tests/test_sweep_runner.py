@@ -1,0 +1,117 @@
+"""The sweep runner with a stand-in executor (no episodes): resume, crashed episodes, early stop, interrupt."""
+
+from __future__ import annotations
+
+import pytest
+
+from assistbot.errors import UserError
+from assistbot.sweep import Param, SweepSpec, build_jobs, run_sweep
+from assistbot.sweep.results import read_rows
+
+TINY = """\
+name: tiny
+seed: 0
+time_limit: 3
+objects:
+  bottle: {zone: RWS, state: closed}
+  glass: {zone: HWS, state: empty}
+human:
+  profile: passive
+"""
+
+
+class FakeExecutor:
+    """Yields a made-up row per job; jobs whose seed is in ``crash_seeds`` raise; stops after ``stop_after``."""
+
+    def __init__(self, crash_seeds=(), stop_after=None):
+        self.crash_seeds = set(crash_seeds)
+        self.stop_after = stop_after
+        self.ran: list[str] = []
+        self.closed = False
+
+    def describe(self):
+        return "fake"
+
+    def run(self, jobs):
+        for i, job in enumerate(jobs):
+            if self.stop_after is not None and i == self.stop_after:
+                raise KeyboardInterrupt
+            self.ran.append(job.id)
+            row = {"job_id": job.id, "scenario": job.scenario, **job.params, "seed": job.seed,
+                   "perception": job.perception, "time_limit": job.time_limit}
+            if job.seed in self.crash_seeds:
+                yield {**row, "status": "crashed", "error": "RuntimeError: boom", "traceback": "x"}
+            else:
+                yield {**row, "status": "ok", "success": job.params["cognition.k"] > 1, "time_to_drink": 10.0 * job.seed,
+                       "end_reason": "drink", "decisions": "A > B", "n_decisions": 2, "errors_communicated": 0,
+                       "spilled_fraction": 0.0, "min_distance_human": 0.3, "sim_time": 3.0, "wall_seconds": 1.0,
+                       "cpu_seconds": 1.0, "scenario_sha": job.scenario_sha}
+
+    def close(self):
+        self.closed = True
+
+
+@pytest.fixture
+def spec(tmp_path):
+    p = tmp_path / "tiny.yaml"
+    p.write_text(TINY)
+    return SweepSpec(scenarios=[str(p)], seeds=3, perception="oracle",
+                     params=[Param.parse("cognition.k", "0.8,1.2"), Param.parse("human.reaction_delay", "0.2,1")])
+
+
+def test_crashed_episodes_go_to_errors_csv_and_run_again_on_resume(spec, tmp_path):
+    out = tmp_path / "out"
+    ex = FakeExecutor(crash_seeds={1})
+    o = run_sweep(spec, out, executor=ex, progress=False, log=lambda m: None)
+    assert (o.total, o.ran, o.crashed, o.complete) == (12, 8, 4, False) and ex.closed
+    _, rows = read_rows(out / "results.csv")
+    assert len(rows) == 8 and {r["seed"] for r in rows} == {"0", "2"}
+    _, errors = read_rows(out / "errors.csv")
+    assert len(errors) == 4 and errors[0]["error"] == "RuntimeError: boom"
+    ex2 = FakeExecutor()
+    o2 = run_sweep(spec, out, executor=ex2, progress=False, log=lambda m: None)
+    assert (o2.skipped, o2.ran, o2.crashed, o2.complete) == (8, 4, 0, True)
+    crashed_ids = {j.id for j in build_jobs(spec) if j.seed == 1}
+    assert set(ex2.ran) == crashed_ids
+    _, rows2 = read_rows(out / "results.csv")
+    assert rows2[:8] == rows and len({r["job_id"] for r in rows2}) == 12
+
+
+def test_a_sweep_whose_first_episodes_all_raise_stops_early(spec, tmp_path):
+    ex = FakeExecutor(crash_seeds={0, 1, 2})
+    o = run_sweep(spec, tmp_path / "out", executor=ex, progress=False, log=lambda m: None)
+    assert o.aborted and "boom" in o.aborted and len(ex.ran) == 4 and o.ran == 0
+
+
+def test_interrupt_saves_what_finished_and_tells_the_outcome(spec, tmp_path):
+    out = tmp_path / "out"
+    with pytest.raises(KeyboardInterrupt) as e:
+        run_sweep(spec, out, executor=FakeExecutor(stop_after=5), progress=False, log=lambda m: None)
+    assert e.value.outcome.ran == 5 and e.value.outcome.interrupted
+    import pyarrow.parquet as pq
+
+    assert pq.read_table(out / "results.parquet").num_rows == 5
+    o = run_sweep(spec, out, executor=FakeExecutor(), progress=False, log=lambda m: None)
+    assert (o.skipped, o.ran) == (5, 7)
+
+
+def test_two_different_scenarios_with_one_name_are_refused(spec, tmp_path):
+    other = tmp_path / "other.yaml"
+    other.write_text(TINY.replace("passive", "active"))
+    spec.scenarios.append(str(other))
+    with pytest.raises(UserError, match="rows are told apart by scenario name"):
+        build_jobs(spec)
+    spec.scenarios[-1] = spec.scenarios[0]  # the same one twice is just deduplicated
+    assert len(build_jobs(spec)) == 12
+
+
+def test_report_on_fake_results(spec, tmp_path):
+    from assistbot.sweep import write_report
+
+    out = tmp_path / "out"
+    run_sweep(spec, out, executor=FakeExecutor(), progress=False, log=lambda m: None)
+    paths = write_report(out)
+    md = paths[0].read_text()
+    assert "6/12 drank" in md  # k = 1.2 drinks
+    assert "| 1.2 | 6 | 6 | 1.00 |" in md and "| 0.8 | 6 | 0 | 0.00 |" in md
+    assert "time to drink 10.0 s [" in md  # seeds 0, 1, 2 -> 0, 10, 20 s
