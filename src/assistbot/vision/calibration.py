@@ -32,22 +32,22 @@ def _circ_range(h: np.ndarray, pct: float = 98.0, pad: int = 4) -> list[tuple[in
     return [(lo, hi)]
 
 
-def hsv_boxes(pixels: np.ndarray, s_pad: int = 25, v_pad: int = 30) -> list[list[int]]:
+def hsv_boxes(pixels: np.ndarray, s_pad: int = 25, v_pad: int = 30, lo_pct: float = 2.0) -> list[list[int]]:
     """Boxes [h_lo, h_hi, s_lo, s_hi, v_lo, v_hi] for (N, 3) HSV pixels."""
-    s_lo, s_hi = np.percentile(pixels[:, 1], [2, 99.5])
-    v_lo, v_hi = np.percentile(pixels[:, 2], [2, 99.5])
+    s_lo, s_hi = np.percentile(pixels[:, 1], [lo_pct, 99.5])
+    v_lo, v_hi = np.percentile(pixels[:, 2], [lo_pct, 99.5])
     sv = [max(0, int(s_lo) - s_pad), min(255, int(s_hi) + s_pad), max(0, int(v_lo) - v_pad), min(255, int(v_hi) + v_pad)]
     return [[a, b, *sv] for a, b in _circ_range(pixels[:, 0])]
 
 
-def calibrate(seed: int = 0, n_scenes: int = 16, progress=None) -> dict:
+def calibrate(seed: int = 0, n_scenes: int = 18, progress=None) -> dict:
     from assistbot.vision.capture import StereoCapture
     from assistbot.vision.scenes import POSTURES, SceneSampler, pose
     from assistbot.world import PAPER_ARRANGEMENTS, build_world
 
     world = build_world(PAPER_ARRANGEMENTS["fig3"], seed)
     sampler = SceneSampler(seed, "calibrate")
-    samples: dict[str, list[np.ndarray]] = {p: [] for p in ("bottle", "stopper", "glass", "liquid", "skin")}
+    samples: dict[str, list[np.ndarray]] = {p: [] for p in ("bottle", "stopper", "glass", "liquid", "skin", "shirt")}
     full_glass: list[np.ndarray] = []
     frames = []
     with StereoCapture(world.model) as cap:
@@ -55,39 +55,29 @@ def calibrate(seed: int = 0, n_scenes: int = 16, progress=None) -> dict:
             lab = pose(world, sampler.sample(POSTURES[i % len(POSTURES)]))
             f = cap.grab(world.data)
             segs = cap.segmentation(world.data)
-            hand = np.array(lab.hand_position)
-            for img, seg, cam in zip((f.left, f.right), segs, f.cams):
+            for img, seg in zip((f.left, f.right), segs):
                 hsv = cv2.cvtColor(img, cv2.COLOR_RGB2HSV)
-                for part in ("bottle", "stopper", "glass", "liquid"):
+                for part in samples:
                     sel = cv2.erode((seg == _SEG[part]).astype(np.uint8), np.ones((2, 2), np.uint8)) > 0
                     if part == "glass" and lab.objects["glass"]["state"] == "full":
                         full_glass.append(hsv[sel])
                     else:
                         samples[part].append(hsv[sel])
-                # the working hand's skin: human pixels near the projected grasp site
-                uv = cam.project(hand)[0]
-                if np.all(np.isfinite(uv)):
-                    yy, xx = np.mgrid[0:seg.shape[0], 0:seg.shape[1]]
-                    near = (xx - uv[0]) ** 2 + (yy - uv[1]) ** 2 < 14 ** 2
-                    sel = cv2.erode(((seg == _SEG["human"]) & near).astype(np.uint8), np.ones((2, 2), np.uint8)) > 0
-                    samples["skin"].append(hsv[sel])
             frames.append((f, lab))
             if progress:
                 progress(i + 1, n_scenes)
     pix = {k: np.concatenate(v) for k, v in samples.items()}
-    # skin samples near the hand may catch a sleeve or an object: keep the dominant saturation mode
-    sk = pix["skin"]
-    med = np.median(sk[:, 1])
-    mad = np.median(np.abs(sk[:, 1] - med)) + 1
-    pix["skin"] = sk[np.abs(sk[:, 1] - med) < 4 * mad]
-    ranges = {k: hsv_boxes(v) for k, v in pix.items() if k not in ("liquid",)}
+    ranges = {k: hsv_boxes(v) for k, v in pix.items() if k not in ("liquid", "skin")}
+    # skin: its pale highlights reach the grey floor's saturation; keep the bulk only
+    ranges["skin"] = hsv_boxes(pix["skin"], s_pad=6, v_pad=20, lo_pct=5.0)
     # liquid: as itself, and as seen through the glass (full-glass pixels whose hue is off the glass's)
     g = pix["glass"][:, 0].astype(float)
     gmean = (np.degrees(np.arctan2(np.sin(g * np.pi / 90).mean(), np.cos(g * np.pi / 90).mean())) / 2) % 180
     fg = np.concatenate(full_glass) if full_glass else np.zeros((0, 3), np.uint8)
-    off = np.abs((fg[:, 0].astype(float) - gmean + 90) % 180 - 90) > 12
+    dh = (fg[:, 0].astype(float) - gmean + 90) % 180 - 90
+    off = (dh > 10) & (dh < 60)          # the liquid (purple) through the cyan wall: bluer than the glass
     liquid = np.concatenate([pix["liquid"], fg[off]])
-    ranges["liquid"] = hsv_boxes(liquid, s_pad=15, v_pad=20)
+    ranges["liquid"] = hsv_boxes(liquid, s_pad=15, v_pad=20, lo_pct=5.0)
     # glass range must not swallow the liquid: keep its hue interval tight
     ranges["glass"] = [[a, b, *r[2:]] for (a, b), r in zip(_circ_range(g.astype(int), 97, 3), ranges["glass"])]
     static = _static_skin(frames, ranges)
@@ -98,11 +88,12 @@ def calibrate(seed: int = 0, n_scenes: int = 16, progress=None) -> dict:
 def _static_skin(frames, ranges) -> list[list[float]]:
     """3-D centres (table frame) of skin blobs that are never the working hand (left hand, face)."""
     from assistbot.vision.camera import triangulate
-    from assistbot.vision.segment import blobs, masks
+    from assistbot.vision.segment import LABEL, ColourTable, components
 
+    table = ColourTable(ranges)
     pts = []
     for f, lab in frames:
-        bl = [blobs(masks(cv2.cvtColor(im, cv2.COLOR_RGB2HSV), ranges)["skin"], "skin", 6)[0] for im in (f.left, f.right)]
+        bl = [components(table.labels(im, 2) == LABEL["skin"], "skin", 6)[0] for im in (f.left, f.right)]
         hand = np.array(lab.hand_position)
         for a in bl[0]:
             cands = [b for b in bl[1] if abs(b.centroid[1] - a.centroid[1]) < 12 and 0 < a.centroid[0] - b.centroid[0] < 120]
@@ -116,7 +107,7 @@ def _static_skin(frames, ranges) -> list[list[float]]:
         return []
     pts = np.array(pts)
     centres: list[np.ndarray] = []
-    for p in pts:   # greedy clustering at 8 cm; keep clusters seen in >= 25% of the scenes
+    for p in pts:   # greedy clustering at 8 cm; keep clusters seen in >= 20% of the scenes
         for c in centres:
             if np.linalg.norm(c[:3] / c[3] - p) < 0.08:
                 c[:3] += p
@@ -124,4 +115,4 @@ def _static_skin(frames, ranges) -> list[list[float]]:
                 break
         else:
             centres.append(np.array([*p, 1.0]))
-    return [[round(float(v), 4) for v in c[:3] / c[3]] for c in centres if c[3] >= 0.25 * len(frames)]
+    return [[round(float(v), 4) for v in c[:3] / c[3]] for c in centres if c[3] >= 0.2 * len(frames)]

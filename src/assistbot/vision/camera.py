@@ -65,8 +65,8 @@ class CameraModel:
     def ray(self, uv) -> np.ndarray:
         """Unit direction (table frame) of the ray through pixel(s) (N, 2)."""
         uv = np.atleast_2d(np.asarray(uv, float))
-        h = np.hstack([uv, np.ones((len(uv), 1))])
-        d = np.linalg.solve(self.K, h.T).T @ self.R          # optical -> table
+        K = self.K
+        d = np.column_stack([(uv[:, 0] - K[0, 2]) / K[0, 0], (uv[:, 1] - K[1, 2]) / K[1, 1], np.ones(len(uv))]) @ self.R  # optical -> table
         return d / np.linalg.norm(d, axis=1, keepdims=True)
 
 

@@ -6,15 +6,12 @@ from the same ``data`` (so the extrinsics match the head pose of the images).  A
 dropout probability drops whole frames (``frame.dropped``: no images): vision then reports
 everything as not seen.
 
-Rendering uses `assistbot.world.render.Renderer` on a private copy of the model in which the
-glass material is rendered translucent (``glass_alpha``): a drinking glass is see-through, and
-that is how a camera tells a full glass from an empty one at the head's viewing angles (an
-opaque wall hides the liquid).  Physics never sees that copy.
+Rendering uses `assistbot.world.render.Renderer` on the world's own model (its glass is
+translucent in the MJCF, so the cameras see the liquid through the wall).
 """
 
 from __future__ import annotations
 
-import copy
 import time
 from dataclasses import dataclass, field
 
@@ -29,14 +26,13 @@ CAMERAS = ("head_cam_left", "head_cam_right")
 
 @dataclass
 class CaptureConfig:
-    """Rate (Hz of simulated time), image size, frame dropout probability, glass alpha."""
+    """Rate (Hz of simulated time), image size, frame dropout probability and its seed."""
 
     rate: float = 10.0
     width: int = 320
     height: int = 240
     dropout: float = 0.0
     seed: int = 0
-    glass_alpha: float | None = 0.4
 
     def validate(self) -> "CaptureConfig":
         from assistbot.errors import UserError
@@ -66,11 +62,7 @@ class StereoCapture:
     def __init__(self, model: mujoco.MjModel, config: CaptureConfig | None = None) -> None:
         self.config = (config or CaptureConfig()).validate()
         self.model = model
-        self._render_model = model
-        if self.config.glass_alpha is not None:
-            self._render_model = copy.deepcopy(model)
-            self._render_model.mat_rgba[self._render_model.material("glass").id, 3] = self.config.glass_alpha
-        self.renderer = Renderer(self._render_model, self.config.width, self.config.height, shadows=False)
+        self.renderer = Renderer(model, self.config.width, self.config.height, shadows=False)
         self._rng = np.random.default_rng(self.config.seed)
         self._next_t = 0.0
 

@@ -3,12 +3,22 @@
 Everything here works on pixels and on the cameras' models only.  Positions are in table
 coordinates (m): an object's position is the centre of the base it stands on.
 
-* An object standing on the table (its stereo centroid sits at the height an object on the
-  table has) is placed by the rays through the bottom of its silhouette meeting the table
-  plane (more precise than stereo depth at a 0.12 m baseline), averaged over both cameras.
-* A lifted object is placed by its triangulated centroid minus its centroid height.
-* An object is "visible" only if both cameras show it with at least `MIN_VISIBLE` of the
-  silhouette area its distance implies: a half-hidden object is reported unseen, not misplaced.
+* Blobs come from the half-resolution label image (`segment.ColourTable`); each object's blob is
+  then re-labelled at full resolution in a small region of interest for its edges, its stopper
+  and its liquid.
+* An object's base: the bottom-centre points of its silhouette in both cameras, triangulated;
+  standing on the table (that point within `ON_TABLE_TOL` of the table) it is the two rays'
+  meeting points with the table plane instead (more precise than stereo depth at a 0.12 m
+  baseline); then moved by the object's radius along the viewing direction (the lowest
+  silhouette point is the base rim's front).
+* An object is "visible" only if both cameras show all of it: its blob off the image border and
+  its silhouette's height and width at least `MIN_EXTENT` of what an upright object at that place
+  projects to (`MIN_EXTENT_HELD` for one lifted in a hand, which always covers part of it).  A
+  half-hidden object is reported unseen, not misplaced.
+* The working hand: skin blobs, less the static ones (the resting left hand, the face) that the
+  calibration located.  The arm's root is where the skin meets the sleeve (the shirt blob: its
+  colour is distinct), or, with no sleeve in view, the shirt's centroid; the hand is the part of
+  the skin blob farthest from that root.
 """
 
 from __future__ import annotations
@@ -18,17 +28,22 @@ from dataclasses import dataclass, field
 import cv2
 import numpy as np
 
+cv2.setNumThreads(1)   # per-frame work on small images: OpenCV's thread pool costs more than it saves
+
 from assistbot.vision.camera import CameraModel, on_plane, triangulate
-from assistbot.vision.segment import Blob, blobs, masks
+from assistbot.vision.segment import LABEL, Blob, ColourTable, components
 from assistbot.world import layout
 
-MIN_VISIBLE = 0.35
-#: height of the visible silhouette's centre above the base (m) and the silhouette (width, height)
-CENTROID_Z = {"bottle": 0.090, "glass": 0.050}
-SILHOUETTE = {"bottle": (0.07, 0.18), "glass": (0.08, 0.10)}
-CROP = {"bottle": (16, 40), "glass": (20, 24), "hand": (32, 32)}   # template sizes (w, h)
-ON_TABLE_TOL = 0.035
-FACE_Z = 0.33               # skin above this table height is the face, not a hand
+MIN_EXTENT = 0.82
+MIN_EXTENT_HELD = 0.55
+#: object heights (m) for the expected silhouettes
+HEIGHT = {"bottle": 0.194, "glass": 0.10}   # the bottle without its (red) stopper
+CROP = {"glass": (16, 20), "hand": (24, 24)}   # template sizes (w, h)
+ON_TABLE_TOL = 0.03
+STATIC_SKIN_R = 0.08       # m: skin this close to a calibrated static spot is not the working hand
+HAND_REACH = 0.10          # m: hand crop half-size
+_B, _S, _G, _L, _K, _T = (LABEL[p] for p in ("bottle", "stopper", "glass", "liquid", "skin", "shirt"))
+_DILATE = np.ones((5, 5), np.uint8)
 
 
 @dataclass
@@ -38,25 +53,30 @@ class ObjectDetection:
     position: np.ndarray | None = None
     blobs: tuple[Blob | None, Blob | None] = (None, None)
     crop: np.ndarray | None = None
-    feat: np.ndarray | None = None      # shape features (templates scores are added by the classifier)
-    area_ratio: float = 0.0
+    feat: np.ndarray | None = None      # shape features (template scores are added by the classifier)
+    extent: float = 0.0                 # measured / expected silhouette extent (min over cameras, height and width)
+    tilt: float = 0.0                   # rad, the silhouette's axis from the image vertical (max over cameras)
+    occluded_top: float = 0.0           # share of the band above the object's top that is skin (max over cameras)
+    stopper: tuple[float, float] = (0.0, 0.0)   # red pixels touching the bottle / expected stopper area, per camera
+    top: np.ndarray | None = None       # triangulated top-centre point (m)
 
 
 @dataclass
 class HandDetection:
     visible: bool
     position: np.ndarray | None = None       # distal end of the hand (m)
-    proximal: np.ndarray | None = None       # forearm centroid (m)
+    proximal: np.ndarray | None = None       # the arm's root (sleeve end) or the skin blob's centre (m)
     blob: Blob | None = None
     crop: np.ndarray | None = None
     geo: np.ndarray | None = None
+    uv: np.ndarray | None = None             # distal end in the left image
 
 
 @dataclass
 class Detections:
     objects: dict[str, ObjectDetection] = field(default_factory=dict)
     hand: HandDetection = field(default_factory=lambda: HandDetection(False))
-    masks: tuple[dict, dict] | None = None
+    labels: tuple[np.ndarray, np.ndarray] | None = None   # half-resolution label images
 
 
 def _crop(img: np.ndarray, x0: int, y0: int, x1: int, y1: int, size: tuple[int, int]) -> np.ndarray:
@@ -76,7 +96,7 @@ def _match(a: Blob, cands: list[Blob]) -> Blob | None:
     for b in cands:
         dv = abs(a.centroid[1] - b.centroid[1])
         du = a.centroid[0] - b.centroid[0]
-        if dv > 10 or not (-2 < du < 140):
+        if dv > 12 or not (-2 < du < 140):
             continue
         s = dv + 10 * abs(np.log((a.area + 1) / (b.area + 1)))
         if s < score:
@@ -84,142 +104,220 @@ def _match(a: Blob, cands: list[Blob]) -> Blob | None:
     return best
 
 
-def _bottom_uv(lab: np.ndarray, b: Blob) -> np.ndarray:
-    x, y, w, h = b.bbox
-    sub = lab[y:y + h, x:x + w] == b.label
-    cu = int(round(b.centroid[0])) - x
-    cols = sub[:, max(0, cu - 1):cu + 2]
-    rows = np.flatnonzero(cols.any(axis=1))
-    v = (rows.max() if rows.size else h - 1) + y + 0.5
-    return np.array([b.centroid[0], v])
+def _expected_box(cam: CameraModel, base: np.ndarray, name: str) -> tuple[float, float]:
+    """(width, height) in pixels of an upright object of type name standing at base."""
+    r, H = layout.OBJECT_RADIUS[name], HEIGHT[name]
+    ang = np.linspace(0, 2 * np.pi, 8, endpoint=False)
+    ring = np.column_stack([r * np.cos(ang), r * np.sin(ang), np.zeros(8)])
+    pts = np.vstack([base + ring, base + ring + [0, 0, H]])
+    uv = cam.project(pts)
+    if not np.all(np.isfinite(uv)):
+        return 1.0, 1.0
+    return float(np.ptp(uv[:, 0])), float(np.ptp(uv[:, 1]))
+
+
+class _Roi:
+    """A blob re-labelled at full resolution: its mask, edges and neighbours."""
+
+    def __init__(self, table: ColourTable, img: np.ndarray, b: Blob, parts: tuple[int, ...], pad_top: int) -> None:
+        H, W = img.shape[:2]
+        x, y, w, h = b.bbox
+        self.x0, self.y0 = max(0, x - 4), max(0, y - pad_top)
+        x1, y1 = min(W, x + w + 4), min(H, y + h + 4)
+        self.img = img[self.y0:y1, self.x0:x1]
+        self.lab = table.labels(self.img)
+        m = self.lab == parts[0]
+        for p in parts[1:]:
+            m |= self.lab == p
+        self.mask = m
+        rows = np.flatnonzero(m.any(axis=1))
+        cols = np.flatnonzero(m.any(axis=0))
+        self.ok = rows.size > 0
+        if not self.ok:
+            return
+        self.top_r, self.bot_r = int(rows[0]), int(rows[-1])
+        self.w = float(cols[-1] - cols[0] + 1)
+        self.h = float(self.bot_r - self.top_r + 1)
+        bu = np.flatnonzero(m[max(self.top_r, self.bot_r - 1):self.bot_r + 1].any(axis=0))
+        tu = np.flatnonzero(m[self.top_r:self.top_r + 2].any(axis=0))
+        self.bottom = np.array([self.x0 + 0.5 * (bu[0] + bu[-1]), self.y0 + self.bot_r + 0.5])
+        self.top = np.array([self.x0 + 0.5 * (tu[0] + tu[-1]), self.y0 + self.top_r - 0.5])
+        ys, xs = np.nonzero(m)
+        if len(xs) > 3:
+            cov = np.cov(np.vstack([xs, ys]))
+            ev, evec = np.linalg.eigh(cov)
+            v = evec[:, 1]
+            self.tilt = float(np.arccos(min(1.0, abs(v[1])))) if ev[1] > 1.5 * ev[0] else 0.0
+        else:
+            self.tilt = 0.0
+        self.area = float(m.sum())
 
 
 class Detector:
     """Stateless per-frame detection with a calibration (HSV ranges, static skin spots)."""
 
     def __init__(self, calibration: dict) -> None:
-        self.ranges = calibration["hsv"]
+        self.table = ColourTable(calibration["hsv"])
         self.static_skin = np.array(calibration.get("static_skin", []), float).reshape(-1, 3)
 
     def __call__(self, left: np.ndarray, right: np.ndarray, cams: tuple[CameraModel, CameraModel]) -> Detections:
-        hsv = (cv2.cvtColor(left, cv2.COLOR_RGB2HSV), cv2.cvtColor(right, cv2.COLOR_RGB2HSV))
-        mk = (masks(hsv[0], self.ranges), masks(hsv[1], self.ranges))
-        det = Detections(masks=mk)
+        imgs = (left, right)
+        lab = tuple(self.table.labels(im, 2) for im in imgs)
+        det = Detections(labels=lab)
+        blobs = []
+        for L in lab:
+            blobs.append({
+                "bottle": components(L == _B, "bottle", 2)[0],
+                "glass": components((L == _G) | (L == _L), "glass", 2)[0],
+                "skin": components(L == _K, "skin", 6),
+            })
         for name in ("bottle", "glass"):
-            det.objects[name] = self._object(name, mk, hsv, cams)
-        det.hand = self._hand(mk, cams, det)
+            det.objects[name] = self._object(name, blobs, imgs, cams)
+        det.hand = self._hand(blobs, lab, imgs, cams, det)
         return det
 
     # ------------------------------------------------------------------ objects
-    def _object(self, name, mk, hsv, cams) -> ObjectDetection:
-        part = [m[name] if name == "bottle" else cv2.bitwise_or(m["glass"], m["liquid"]) for m in mk]
-        if name == "glass":
-            part = [cv2.morphologyEx(p, cv2.MORPH_CLOSE, np.ones((3, 3), np.uint8)) for p in part]
-        (bl, lab_l), (br, lab_r) = blobs(part[0], name, 2), blobs(part[1], name, 2)
+    def _object(self, name, blobs, imgs, cams) -> ObjectDetection:
+        bl, br = blobs[0][name], blobs[1][name]
         if not bl or not br:
-            return ObjectDetection(name, False)
+            return ObjectDetection(name, False, blobs=(bl[0] if bl else None, None))
         a = bl[0]
         b = _match(a, br)
         if b is None:
             return ObjectDetection(name, False, blobs=(a, None))
-        Xc = triangulate(cams[0], cams[1], a.centroid, b.centroid)[0]
-        depth = float(np.linalg.norm(Xc - cams[0].C))
-        f = cams[0].K[0, 0]
-        sw, sh = SILHOUETTE[name]
-        expected = (f / depth) ** 2 * sw * sh * 0.8
-        ratio = min(a.area, b.area) / expected
-        r = layout.OBJECT_RADIUS[name]
-        base_z = Xc[2] - CENTROID_Z[name]
-        if abs(base_z) < ON_TABLE_TOL:
+        parts = (_B,) if name == "bottle" else (_G, _L)
+        rois = []
+        for img, bb in zip(imgs, (a, b)):
+            pad = int(0.35 * bb.bbox[3]) + 6 if name == "bottle" else 6
+            r = _Roi(self.table, img, bb, parts, pad)
+            if not r.ok:
+                return ObjectDetection(name, False, blobs=(a, b))
+            rois.append(r)
+        Xb = triangulate(cams[0], cams[1], rois[0].bottom, rois[1].bottom)[0]
+        Xt = triangulate(cams[0], cams[1], rois[0].top, rois[1].top)[0]
+        r_obj = layout.OBJECT_RADIUS[name]
+        on_table = abs(Xb[2]) < ON_TABLE_TOL
+        if on_table:
             pts = []
-            for cam, lab, bb in ((cams[0], lab_l, a), (cams[1], lab_r, b)):
-                P = on_plane(cam, _bottom_uv(lab, bb), 0.0)[0]
+            for cam, roi in zip(cams, rois):
+                P = on_plane(cam, roi.bottom, 0.0)[0]
                 hdir = P[:2] - cam.C[:2]
-                P[:2] += r * hdir / np.linalg.norm(hdir)
+                P[:2] += r_obj * hdir / np.linalg.norm(hdir)
                 pts.append(P)
             pos = np.mean(pts, axis=0)
         else:
-            pos = Xc.copy()
-            hdir = Xc[:2] - cams[0].C[:2]
-            pos[:2] += 0.5 * r * hdir / np.linalg.norm(hdir)
-            pos[2] = base_z
-        H, W = part[0].shape
-        inside = all(bb.bbox[0] > 0 and bb.bbox[1] > 0 and bb.bbox[0] + bb.bbox[2] < W and bb.bbox[1] + bb.bbox[3] < H for bb in (a, b))
-        det = ObjectDetection(name, bool(ratio >= MIN_VISIBLE and inside), pos, (a, b), area_ratio=float(ratio))
-        det.crop, det.feat = self._object_features(name, a, b, mk, hsv)
+            pos = Xb.copy()
+            hdir = Xb[:2] - 0.5 * (cams[0].C[:2] + cams[1].C[:2])
+            pos[:2] += r_obj * hdir / np.linalg.norm(hdir)
+        extent = 9.0
+        H, W = imgs[0].shape[:2]
+        inside = True
+        for cam, roi, bb in zip(cams, rois, (a, b)):
+            ew, eh = _expected_box(cam, pos, name)
+            extent = min(extent, roi.h / max(eh, 1.0), roi.w / max(ew, 1.0))
+            x, y, w, h = bb.bbox
+            inside &= x > 1 and y > 1 and x + w < W - 1 and y + h < H - 1
+        tilt = max(roi.tilt for roi in rois)
+        held = not on_table or tilt > 0.35
+        visible = bool(inside and extent >= (MIN_EXTENT_HELD if held else MIN_EXTENT))
+        det = ObjectDetection(name, visible, pos, (a, b), extent=float(extent), tilt=float(tilt), top=Xt)
+        self._object_features(det, rois, cams, pos)
         return det
 
-    def _object_features(self, name, a: Blob, b: Blob, mk, hsv):
-        x, y, w, h = a.bbox
-        if name == "bottle":
-            # the stopper: red pixels just above the top of the green silhouette, in both images
-            red = []
-            for bb, m in ((a, mk[0]), (b, mk[1])):
-                bx, by, bw, bh = bb.bbox
-                top = m["stopper"][max(0, by - int(0.25 * bh) - 2):by + int(0.12 * bh) + 2, max(0, bx - 1):bx + bw + 1]
-                red.append(min(1.0, float(np.count_nonzero(top)) / max(4.0, 0.02 * bb.area)))
-            y0 = y - int(0.25 * h) - 2
-            img = 0.5 * (mk[0]["bottle"] > 0) + 1.0 * (mk[0]["stopper"] > 0)
-            crop = _crop(img, x - 1, y0, x + w + 1, y + h + 1, CROP["bottle"])
-            return crop, np.array([red[0], red[1]], np.float32)
-        m = mk[0]
-        sel_g = m["glass"][y:y + h, x:x + w] > 0
-        sel_l = m["liquid"][y:y + h, x:x + w] > 0
-        liquid = float(sel_l.sum()) / max(1.0, float(sel_g.sum() + sel_l.sum()))
-        sat = hsv[0][y:y + h, x:x + w, 1].astype(np.float32) / 255.0 * sel_g
-        third = max(1, h // 3)
-        top = sat[:third].sum() / max(1.0, sel_g[:third].sum())
-        bottom = sat[-third:].sum() / max(1.0, sel_g[-third:].sum())
-        img = hsv[0][..., 1].astype(np.float32) / 255.0 * (m["glass"] > 0) + 1.0 * (m["liquid"] > 0)
-        crop = _crop(img, x - 1, y - 1, x + w + 1, y + h + 1, CROP["glass"])
-        return crop, np.array([liquid, top - bottom], np.float32)
+    def _object_features(self, det: ObjectDetection, rois, cams, pos) -> None:
+        depth = float(np.linalg.norm(pos - cams[0].C))
+        f = cams[0].K[0, 0]
+        if det.name == "bottle":
+            # the stopper: red pixels touching the bottle's silhouette (any tilt); the band above the
+            # top: how much of it is skin (a hand over the stopper hides it)
+            exp = np.pi * (0.019 * f / depth) ** 2 * 0.5
+            red, occ = [], []
+            for roi in rois:
+                near = cv2.dilate(roi.mask.view(np.uint8), _DILATE) > 0
+                red.append(min(1.5, float(np.count_nonzero(near & (roi.lab == _S))) / exp))
+                band = roi.lab[max(0, roi.top_r - int(0.3 * roi.h)):roi.top_r + 3]
+                occ.append(float(np.count_nonzero(band == _K)) / max(1.0, 0.3 * roi.h * roi.w))
+            det.stopper = (red[0], red[1])
+            det.occluded_top = float(max(occ))
+            lift = float(pos[2])
+            det.feat = np.array([max(red), min(red), det.occluded_top, det.tilt, lift], np.float32)
+            return
+        roi = rois[0]
+        m = roi.mask
+        liq = [float(np.count_nonzero(r.mask & (r.lab == _L))) / max(1.0, r.area) for r in rois]
+        third = max(1, int(roi.h) // 3)
+        rows = m[roi.top_r:roi.bot_r + 1]
+        width_top = float(rows[:third].sum()) / third
+        width_bot = float(rows[-third:].sum()) / third
+        shape = (width_top - width_bot) / max(1.0, roi.w)
+        rgb = roi.img.astype(np.float32)
+        mx = rgb.max(axis=2)
+        sat = (mx - rgb.min(axis=2)) / np.maximum(mx, 1.0)
+        det.crop = _crop(sat * m, 0, roi.top_r - 1, m.shape[1], roi.bot_r + 2, CROP["glass"])
+        det.feat = np.array([max(liq), min(liq), shape, det.tilt, float(pos[2])], np.float32)
 
     # ------------------------------------------------------------------ hand
-    def _hand(self, mk, cams, det: Detections) -> HandDetection:
-        (bl, lab_l), (br, _) = blobs(mk[0]["skin"], "skin", 6), blobs(mk[1]["skin"], "skin", 6)
+    def _hand(self, blobs, lab, imgs, cams, det: Detections) -> HandDetection:
+        (bl, cl), (br, cr) = blobs[0]["skin"], blobs[1]["skin"]
         best = None
         for a in bl:
             b = _match(a, br)
             if b is None:
                 continue
             X = triangulate(cams[0], cams[1], a.centroid, b.centroid)[0]
-            if X[2] > FACE_Z:
-                continue
-            if len(self.static_skin) and np.min(np.linalg.norm(self.static_skin - X, axis=1)) < 0.07:
+            if not (-0.05 < X[2] < 0.7 and -0.7 < X[0] < 0.3 and abs(X[1]) < 0.7):
+                continue      # not over the table: floor, background
+            if len(self.static_skin) and np.min(np.linalg.norm(self.static_skin - X, axis=1)) < STATIC_SKIN_R:
                 continue
             if best is None or a.area > best[0].area:
                 best = (a, b, X)
         if best is None:
             return HandDetection(False)
         a, b, X = best
-        # distal end: the blob's pixels farthest from the forearm's root (the end nearest the partner)
-        pts = []
-        for cam, bb, m in ((cams[0], a, mk[0]["skin"]), (cams[1], b, mk[1]["skin"])):
-            x, y, w, h = bb.bbox
-            ys, xs = np.nonzero(m[y:y + h, x:x + w])
-            P = np.column_stack([xs + x + 0.5, ys + y + 0.5])
-            root = cam.project(np.array([-0.45, X[1] * 0.5 - 0.1, 0.1]))[0]
+        ends, roots = [], []
+        for L, bb, cc in ((lab[0], a, cl), (lab[1], b, cr)):
+            x, y, w, h = (v // 2 for v in bb.bbox)
+            x0, y0, x1, y1 = max(0, x - 2), max(0, y - 2), min(L.shape[1], x + w + 2), min(L.shape[0], y + h + 2)
+            sub = L[y0:y1, x0:x1]
+            skin = cc[y0:y1, x0:x1] == bb.label        # this blob's own pixels (from the one components pass)
+            ys, xs = np.nonzero(skin)
+            P = np.column_stack([xs + x0, ys + y0]).astype(float) * 2 + 0.5
+            sleeve = cv2.dilate((sub == _T).view(np.uint8), np.ones((3, 3), np.uint8)) > 0
+            touch = np.nonzero(skin & sleeve)
+            if len(touch[0]) >= 2:
+                root = np.array([touch[1].mean() + x0, touch[0].mean() + y0]) * 2 + 0.5
+            else:
+                tm = cv2.moments((L == _T).view(np.uint8), binaryImage=True)
+                root = np.array([tm["m10"] / tm["m00"], tm["m01"] / tm["m00"]]) * 2 if tm["m00"] > 0 else bb.centroid + [0, -40]
             dist = np.linalg.norm(P - root, axis=1)
-            far = P[dist >= np.percentile(dist, 70)]
-            pts.append(far.mean(axis=0))
-        Xd = triangulate(cams[0], cams[1], pts[0], pts[1])[0]
+            far = P[dist >= np.percentile(dist, 75)]
+            ends.append(far.mean(axis=0))
+            roots.append(root)
+        Xd = triangulate(cams[0], cams[1], ends[0], ends[1])[0]
+        Xr = triangulate(cams[0], cams[1], roots[0], roots[1])[0]
         depth = float(np.linalg.norm(Xd - cams[0].C))
-        half = int(round(cams[0].K[0, 0] * 0.09 / depth))
-        u, v = pts[0]
-        crop = _crop((mk[0]["skin"] > 0).astype(np.float32), int(u) - half, int(v) - half, int(u) + half, int(v) + half, CROP["hand"])
-        geo = self._hand_geo(Xd, X, det)
-        return HandDetection(True, Xd, X, a, crop, geo)
+        half = int(round(cams[0].K[0, 0] * HAND_REACH / depth))
+        u, v = (int(round(c)) for c in ends[0])
+        skin_full = self.table.labels(imgs[0][max(0, v - half):v + half, max(0, u - half):u + half]) == _K
+        crop = _crop(skin_full.astype(np.float32), 0, 0, skin_full.shape[1], skin_full.shape[0], CROP["hand"]) \
+            if skin_full.size else np.zeros(CROP["hand"][::-1], np.float32)
+        area = a.area * (depth / cams[0].K[0, 0]) ** 2 * 1e4       # cm^2 of skin in view
+        geo = self._hand_geo(Xd, Xr, det, area)
+        return HandDetection(True, Xd, Xr, a, crop, geo, np.asarray(ends[0]))
 
     @staticmethod
-    def _hand_geo(Xd: np.ndarray, Xp: np.ndarray, det: Detections) -> np.ndarray:
-        """Hand geometry: position, forearm direction, and where the nearest object is relative to it."""
-        d = Xd - Xp
+    def _hand_geo(Xd: np.ndarray, Xr: np.ndarray, det: Detections, area: float) -> np.ndarray:
+        """Hand geometry: position, arm direction, skin area, and the nearest object relative to it."""
+        d = Xd - Xr
         d = d / max(1e-6, float(np.linalg.norm(d)))
-        near_xy, near_dz = 0.4, 0.0
+        near = (0.5, 0.0, 0.0, 0.0, 0.0)
+        best = 0.5
         for o in det.objects.values():
             if o.position is None:
                 continue
+            top = o.top if o.top is not None else o.position
             dxy = float(np.linalg.norm(Xd[:2] - o.position[:2]))
-            if dxy < near_xy:
-                near_xy, near_dz = dxy, float(Xd[2] - o.position[2]) / (0.2 if o.name == "bottle" else 0.1)
-        return np.array([Xd[0], Xd[1], Xd[2], d[0], d[1], d[2], near_xy, near_dz], np.float32)
+            if dxy < best:
+                best = dxy
+                near = (dxy, float(Xd[2] - top[2]), float(o.position[2]), float(o.tilt), 1.0 if o.name == "bottle" else -1.0)
+        return np.array([Xd[0], Xd[1], Xd[2], d[0], d[1], d[2], area, *near], np.float32)

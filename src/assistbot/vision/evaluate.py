@@ -11,6 +11,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from assistbot.vision.library import KINDS
+from assistbot.vision.pipeline import LOW_CONFIDENCE
 
 
 @dataclass
@@ -18,6 +19,8 @@ class Score:
     truth: dict[str, list[str]] = field(default_factory=lambda: {k: [] for k in KINDS})
     pred: dict[str, list[str]] = field(default_factory=lambda: {k: [] for k in KINDS})
     pos_err: list[float] = field(default_factory=list)
+    hand_err: list[float] = field(default_factory=list)
+    low_conf: dict[str, list[bool]] = field(default_factory=lambda: {"bottle": [], "glass": []})   # correct?
     unseen: dict[str, int] = field(default_factory=lambda: {k: 0 for k in KINDS})
     render_ms: list[float] = field(default_factory=list)
     process_ms: list[float] = field(default_factory=list)
@@ -32,15 +35,19 @@ class Score:
             if not op.seen:
                 self.unseen[o] += 1
                 continue
+            self.pos_err.append(float(np.linalg.norm(np.array(op.position) - np.array(labels.objects[o]["position"]))))
+            if op.confidence <= LOW_CONFIDENCE:
+                self.low_conf[o].append(op.state == labels.objects[o]["state"])
+                continue
             self.truth[o].append(labels.objects[o]["state"])
             self.pred[o].append(op.state)
-            self.pos_err.append(float(np.linalg.norm(np.array(op.position) - np.array(labels.objects[o]["position"]))))
         if visible["hand"]:
             if not percept.hand.seen:
                 self.unseen["hand"] += 1
             else:
                 self.truth["hand"].append(labels.posture)
                 self.pred["hand"].append(percept.hand.posture)
+                self.hand_err.append(float(np.linalg.norm(np.array(percept.hand.position) - np.array(labels.hand_position))))
 
     def accuracy(self, kind: str | tuple[str, ...]) -> float:
         kinds = (kind,) if isinstance(kind, str) else kind
@@ -71,33 +78,51 @@ class Score:
             lines.append("  confusion (rows truth, columns predicted): " + " ".join(c[:8] for c in cl))
             for i, c in enumerate(cl):
                 lines.append(f"  {c:<{w}} " + " ".join(f"{v:>8}" for v in M[i]))
+        for o, v in self.low_conf.items():
+            if v:
+                lines.append(f"{o}: {len(v)} seen with a low-confidence state (<= {LOW_CONFIDENCE}: stopper hidden), "
+                             f"not scored above; {sum(v)} of them right")
         e = np.array(self.pos_err) * 100
         if e.size:
             lines.append(f"\nobject position error: median {np.median(e):.2f} cm, 95th percentile {np.percentile(e, 95):.2f} cm, max {e.max():.1f} cm (n={e.size})")
+        e = np.array(self.hand_err) * 100
+        if e.size:
+            lines.append(f"hand position error (grasp site): median {np.median(e):.2f} cm, 95th percentile {np.percentile(e, 95):.2f} cm (n={e.size})")
         if self.render_ms:
             lines.append(f"ms per stereo pair: rendering {np.median(self.render_ms):.2f} (median), processing {np.median(self.process_ms):.2f} (median), "
                          f"{np.percentile(self.process_ms, 95):.2f} (95th)")
         return "\n".join(lines)
 
 
-def visibility(segs, min_px: int = 25) -> dict[str, bool]:
-    """Which labelled things both cameras show with at least min_px pixels (from the renderer's segmentation)."""
+def visibility(segs, cams=None, hand=None, min_px: int = 25, hand_px: int = 25) -> dict[str, bool]:
+    """Which labelled things both cameras show with at least min_px pixels (from the renderer's
+    segmentation); the hand: skin pixels within 6 cm of the grasp site's projection in both cameras."""
     from assistbot.world.render import SEGMENT_LABELS
     inv = {v: k for k, v in SEGMENT_LABELS.items()}
     vis = {}
     for name, lab in (("bottle", "bottle"), ("glass", "glass")):
         vis[name] = all(int(np.count_nonzero(s == inv[lab])) >= min_px for s in segs)
     vis["hand"] = True
+    if cams is not None and hand is not None:
+        for s, cam in zip(segs, cams):
+            uv = cam.project(np.asarray(hand))[0]
+            if not np.all(np.isfinite(uv)):
+                vis["hand"] = False
+                continue
+            rad = cam.K[0, 0] * 0.06 / max(0.1, float(np.linalg.norm(np.asarray(hand) - cam.C)))
+            yy, xx = np.ogrid[:s.shape[0], :s.shape[1]]
+            near = (xx - uv[0]) ** 2 + (yy - uv[1]) ** 2 < rad ** 2
+            vis["hand"] &= int(np.count_nonzero(near & (s == inv["skin"]))) >= hand_px
     return vis
 
 
-def run(n: int, seed: int = 0, purpose: str = "bench", progress=None) -> Score:
+def run(n: int, seed: int = 0, purpose: str = "bench", progress=None, root=None) -> Score:
     from assistbot.vision.capture import StereoCapture
     from assistbot.vision.pipeline import Vision
     from assistbot.vision.scenes import SceneSampler, pose
     from assistbot.world import PAPER_ARRANGEMENTS, build_world
 
-    vision = Vision()
+    vision = Vision(root)
     world = build_world(PAPER_ARRANGEMENTS["fig3"], seed)
     sampler = SceneSampler(seed, purpose)
     score = Score()
@@ -105,7 +130,7 @@ def run(n: int, seed: int = 0, purpose: str = "bench", progress=None) -> Score:
         for i in range(n):
             lab = pose(world, sampler.sample())
             f = cap.grab(world.data)
-            vis = visibility(cap.segmentation(world.data))
+            vis = visibility(cap.segmentation(world.data), f.cams, lab.hand_position)
             percept = vision.perceive(f)
             score.add(percept, lab, vis)
             score.render_ms.append(f.render_ms)

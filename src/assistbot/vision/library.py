@@ -21,10 +21,9 @@ import numpy as np
 from assistbot.errors import UserError
 
 ROOT = Path(__file__).resolve().parents[3] / "assets" / "templates"
-PROTOTYPES = 3
-SCALES = (0.9, 1.0, 1.1)
+PROTOTYPES = 2
 KINDS = {"bottle": ("closed", "open"), "glass": ("inverted", "empty", "full"),
-         "hand": ("none", "reach", "grasp_ag", "grasp_sg", "open_palm_request", "pointing")}
+         "hand": ("none", "reach", "grasp_ag", "grasp_sg", "open_palm_request", "pointing", "remove_stopper", "pour", "drink")}
 K_NEIGHBOURS = 5
 
 
@@ -32,20 +31,18 @@ def _pad(crop: np.ndarray) -> np.ndarray:
     return cv2.copyMakeBorder(crop.astype(np.float32), 3, 3, 3, 3, cv2.BORDER_CONSTANT, value=0)
 
 
-def template_scores(crop: np.ndarray, protos: list[list[np.ndarray]]) -> np.ndarray:
-    """Best normalised match of crop against each class's prototypes over SCALES (one score per class)."""
+def template_scores(crop: np.ndarray | None, protos: list[list[np.ndarray]]) -> np.ndarray:
+    """Best normalised match (cv2.matchTemplate, TM_CCOEFF_NORMED, +-3 px shifts) of crop against each
+    class's prototypes: one score per class.  Crops are normalised to the template size by the
+    detector (their size follows the object's distance), so one scale suffices."""
+    if crop is None or not any(protos):
+        return np.zeros(0, np.float32)
     out = np.full(len(protos), -1.0, np.float32)
-    h, w = crop.shape
-    scaled = [_pad(cv2.resize(crop, (max(4, int(round(w * s))), max(4, int(round(h * s)))), interpolation=cv2.INTER_LINEAR)) for s in SCALES]
+    img = _pad(crop)
     for c, plist in enumerate(protos):
-        best = -1.0
         for p in plist:
-            for img in scaled:
-                if img.shape[0] < p.shape[0] or img.shape[1] < p.shape[1]:
-                    continue
-                r = cv2.matchTemplate(img, p, cv2.TM_CCOEFF_NORMED)
-                best = max(best, float(r.max()))
-        out[c] = best
+            r = cv2.matchTemplate(img, p, cv2.TM_CCOEFF_NORMED)
+            out[c] = max(out[c], float(r.max()))
     return out
 
 
@@ -78,10 +75,10 @@ class Classifier:
     std: np.ndarray
     weights: np.ndarray
 
-    def features(self, crop: np.ndarray, extra: np.ndarray) -> np.ndarray:
+    def features(self, crop: np.ndarray | None, extra: np.ndarray) -> np.ndarray:
         return np.concatenate([template_scores(crop, self.protos), np.asarray(extra, np.float32)])
 
-    def classify(self, crop: np.ndarray, extra: np.ndarray) -> tuple[str, float, np.ndarray]:
+    def classify(self, crop: np.ndarray | None, extra: np.ndarray) -> tuple[str, float, np.ndarray]:
         """(class, confidence in [0, 1], class template scores)."""
         f = self.features(crop, extra)
         z = (f - self.mean) / self.std * self.weights
@@ -90,26 +87,28 @@ class Classifier:
         w = 1.0 / (np.sqrt(d[idx]) + 1e-3)
         votes = np.bincount(self.y[idx], weights=w, minlength=len(self.classes))
         c = int(np.argmax(votes))
-        return self.classes[c], float(votes[c] / votes.sum()), f[:len(self.classes)]
+        return self.classes[c], float(votes[c] / votes.sum()), f[:len(f) - len(extra)]
 
 
-def build_classifier(kind: str, crops: list[np.ndarray], extras: list[np.ndarray], labels: list[str], seed: int = 0,
+def build_classifier(kind: str, crops: list[np.ndarray | None], extras: list[np.ndarray], labels: list[str], seed: int = 0,
                      weights: np.ndarray | None = None) -> Classifier:
     classes = KINDS[kind]
     y = np.array([classes.index(lab) for lab in labels])
     protos = []
     for c in range(len(classes)):
-        sel = [cr for cr, yy in zip(crops, y) if yy == c]
+        sel = [cr for cr, yy in zip(crops, y) if yy == c and cr is not None]
         if not sel:
             protos.append([])
             continue
         X = np.array([s.ravel() for s in sel])
         lab = kmeans(X, PROTOTYPES, seed + c)
-        protos.append([_to_u8(X[lab == j].mean(0).reshape(sel[0].shape)) for j in range(lab.max() + 1)])
+        protos.append([_to_u8(X[lab == j].mean(0).reshape(sel[0].shape)) for j in range(lab.max() + 1) if np.any(lab == j)])
     protos_f = [[p.astype(np.float32) / 255.0 for p in pl] for pl in protos]
     F = np.array([np.concatenate([template_scores(cr, protos_f), e]) for cr, e in zip(crops, extras)], np.float32)
     mean, std = F.mean(0), F.std(0) + 1e-3
-    w = np.ones(F.shape[1], np.float32) if weights is None else np.asarray(weights, np.float32)
+    w = np.ones(F.shape[1], np.float32)
+    if weights is not None:
+        w[len(w) - len(weights):] = weights      # weights of the shape features (template scores weigh 1)
     return Classifier(kind, classes, protos_f, (F - mean) / std * w, y, mean, std, w)
 
 
@@ -159,7 +158,8 @@ def load(root: Path | None = None) -> tuple[dict[str, Classifier], dict]:
     index = json.loads(path.read_text())
     out = {}
     for kind, e in index["kinds"].items():
-        protos = [[cv2.imread(str(root / n), cv2.IMREAD_GRAYSCALE).astype(np.float32) / 255.0 for n in e["prototypes"][c]] for c in e["classes"]]
+        protos = [[cv2.imread(str(root / n), cv2.IMREAD_GRAYSCALE).astype(np.float32) / 255.0 for n in e["prototypes"].get(c, [])]
+                  for c in e["classes"]]
         X = np.array(e["examples"]["X"], np.float32)
         out[kind] = Classifier(kind, tuple(e["classes"]), protos, X, np.array(e["examples"]["y"]),
                                np.array(e["mean"], np.float32), np.array(e["std"], np.float32), np.array(e["weights"], np.float32))

@@ -31,6 +31,10 @@ from assistbot.world.layout import zone_of
 HELD_OUT_X = -0.20          # a raised hand beyond this x (toward the robot) is held out
 HELD_OUT_Z = 0.14
 IN_HAND_XY = 0.10           # a grasping hand this close (m, horizontally) to an object holds it
+STOPPER_SEEN = 0.04         # red touching the bottle, as a share of a stopper's expected area: closed
+HAND_AT_TOP = 0.12          # m: a hand this close to the bottle's top may hide the stopper
+LOW_CONFIDENCE = 0.3        # confidence of a state the pixels cannot show (stopper covered)
+DRINK_Z = 0.25              # m: a glass lifted this high is at the face
 
 
 def _unseen(name: str) -> ObjectPercept:
@@ -49,6 +53,7 @@ class Vision:
 
     def __init__(self, root=None) -> None:
         self.classifiers, self.calibration = library.load(root)
+        self.hand_offset = {k: np.asarray(v, float) for k, v in self.calibration.get("hand_offset", {}).items()}
         self.detector = Detector(self.calibration)
         self.last: Detections | None = None
         self.timing = Timing()
@@ -66,12 +71,12 @@ class Vision:
         self.last = det
         for name in ("bottle", "glass"):
             d = det.objects[name]
-            if not d.visible or d.crop is None:
+            if not d.visible:
                 op = _unseen(name)
             else:
-                state, conf, _ = self.classifiers[name].classify(d.crop, d.feat)
+                state, conf = self._state(name, d, det.hand)
                 pos = tuple(round(float(v), 4) for v in d.position)
-                op = ObjectPercept(name, zone_of(pos[0]), state, pos, round(conf * min(1.0, d.area_ratio), 3), True)
+                op = ObjectPercept(name, zone_of(pos[0]), state, pos, round(conf, 3), True)
             if robot_holding == name:
                 op.zone = "RWS"
                 if robot_tcp is not None:
@@ -82,15 +87,43 @@ class Vision:
         self.timing.render_ms = frame.render_ms
         return p
 
+    def _state(self, name: str, d, hand) -> tuple[str, float]:
+        """State and confidence.  Bottle: red touching it in either camera is the stopper (closed);
+        no red with the hand at the bottle's top (stereo: within `HAND_AT_TOP` m) means the stopper
+        may be hidden in the hand: the state then comes with a low confidence; else open."""
+        state, conf, _ = self.classifiers[name].classify(d.crop, d.feat)
+        if name == "bottle":
+            hand_at_top = bool(hand.visible and np.linalg.norm(hand.position - (d.position + [0, 0, 0.19])) < HAND_AT_TOP)
+            both = min(d.stopper) >= STOPPER_SEEN
+            one = max(d.stopper) >= STOPPER_SEEN
+            if both:
+                return "closed", 0.95
+            if one and hand_at_top:
+                return "closed", 0.7       # the stopper shows beside the hand in one camera
+            if one or hand_at_top:
+                return state, min(conf, LOW_CONFIDENCE)
+            return "open", 0.9
+        return state, conf
+
     def _hand(self, det: Detections, p: Percept) -> HandPercept:
         h = det.hand
+        glass = det.objects["glass"]
         if not h.visible:
+            # the glass lifted to the face: the drinking hand merges with the face in the image
+            if glass.position is not None and glass.position[2] > DRINK_Z and glass.extent > 0.3:
+                pos = tuple(round(float(v), 4) for v in glass.position + np.array([0, 0, 0.05]))
+                return HandPercept(posture="drink", position=pos, object_in_hand="glass", directed_at="glass", confidence=0.6)
             return HandPercept(seen=False, confidence=0.0)
         posture, conf, _ = self.classifiers["hand"].classify(h.crop, h.geo)
-        X = h.position
+        X = h.position + self.hand_offset.get(posture, np.zeros(3))
         seen_objs = {n: np.array(o.position) for n, o in p.objects.items() if o.seen}
         hp = HandPercept(posture=posture, position=tuple(round(float(v), 4) for v in X), confidence=round(conf, 3))
-        if seen_objs:
+        target = {"remove_stopper": "bottle", "pour": "bottle", "drink": "glass"}.get(posture)
+        if target:
+            hp.directed_at = target
+            if posture != "remove_stopper":
+                hp.object_in_hand = target
+        elif seen_objs:
             near = min(seen_objs, key=lambda n: np.linalg.norm(seen_objs[n][:2] - X[:2]))
             if posture in ("grasp_ag", "grasp_sg") and np.linalg.norm(seen_objs[near][:2] - X[:2]) < IN_HAND_XY + 0.05:
                 hp.object_in_hand = near
@@ -99,6 +132,7 @@ class Vision:
             if posture == "pointing":
                 d = X[:2] - h.proximal[:2]
                 d = d / max(1e-6, float(np.linalg.norm(d)))
+
                 def off(n):
                     v = seen_objs[n][:2] - X[:2]
                     along = float(v @ d)
@@ -118,11 +152,11 @@ class Vision:
             cv2.putText(img, f"t={frame.t:.1f}s frame dropped: nothing seen", (8, 20), cv2.FONT_HERSHEY_SIMPLEX, 0.5, (255, 255, 255), 1)
             return img
         img = frame.left.copy()
-        tint = {"bottle": (0, 255, 0), "stopper": (255, 0, 0), "glass": (0, 255, 255), "liquid": (200, 0, 255), "skin": (255, 160, 0)}
-        if self.last is not None and self.last.masks is not None:
-            for part, m in self.last.masks[0].items():
-                sel = m > 0
-                img[sel] = (0.5 * img[sel] + 0.5 * np.array(tint[part])).astype(np.uint8)
+        tint = np.array([(0, 0, 0), (0, 255, 0), (255, 0, 0), (0, 255, 255), (200, 0, 255), (255, 160, 0), (255, 255, 0)], np.float32)
+        if self.last is not None and self.last.labels is not None:
+            lab = cv2.resize(self.last.labels[0], (img.shape[1], img.shape[0]), interpolation=cv2.INTER_NEAREST)
+            sel = lab > 0
+            img[sel] = (0.5 * img[sel] + 0.5 * tint[lab[sel]]).astype(np.uint8)
         img = cv2.resize(img, None, fx=scale, fy=scale, interpolation=cv2.INTER_NEAREST)
         cam = frame.cams[0]
         font = cv2.FONT_HERSHEY_SIMPLEX
@@ -134,6 +168,7 @@ class Vision:
                 cv2.rectangle(img, (x * scale, y * scale), ((x + w) * scale, (y + h) * scale), col, 1)
                 if d.crop is not None:
                     t = cv2.resize((np.clip(d.crop, 0, 1) * 255).astype(np.uint8), None, fx=scale, fy=scale)
+                    t = t[:img.shape[0], :img.shape[1]]
                     th, tw = t.shape
                     yy, xx = max(0, y * scale - th - 2), min(img.shape[1] - tw, (x + w) * scale + 2)
                     img[yy:yy + th, xx:xx + tw] = t[..., None]
@@ -156,7 +191,7 @@ class Vision:
 
 
 # ---------------------------------------------------------------------------- building the library
-def build_library(seed: int = 0, n_scenes: int = 240, root=None, progress=None) -> list:
+def build_library(seed: int = 0, n_scenes: int = 540, root=None, progress=None) -> list:
     """Calibrate, render library scenes, and write prototypes + examples to assets/templates/."""
     from assistbot.vision.calibration import calibrate
     from assistbot.vision.capture import StereoCapture
@@ -168,6 +203,7 @@ def build_library(seed: int = 0, n_scenes: int = 240, root=None, progress=None) 
     world = build_world(PAPER_ARRANGEMENTS["fig3"], seed)
     sampler = SceneSampler(seed, "library")
     data = {k: ([], [], []) for k in library.KINDS}
+    offsets: dict[str, list[np.ndarray]] = {}
     with StereoCapture(world.model) as cap:
         for i in range(n_scenes):
             lab = pose(world, sampler.sample(POSTURES[i % len(POSTURES)]))
@@ -175,7 +211,7 @@ def build_library(seed: int = 0, n_scenes: int = 240, root=None, progress=None) 
             d = det(f.left, f.right, f.cams)
             for name in ("bottle", "glass"):
                 o = d.objects[name]
-                if o.visible and o.crop is not None:
+                if o.visible:
                     data[name][0].append(o.crop)
                     data[name][1].append(o.feat)
                     data[name][2].append(lab.objects[name]["state"])
@@ -183,10 +219,14 @@ def build_library(seed: int = 0, n_scenes: int = 240, root=None, progress=None) 
                 data["hand"][0].append(d.hand.crop)
                 data["hand"][1].append(d.hand.geo)
                 data["hand"][2].append(lab.posture)
+                offsets.setdefault(lab.posture, []).append(np.array(lab.hand_position) - d.hand.position)
             if progress:
                 progress(i + 1, n_scenes)
-    # the stopper-on-top and liquid fractions are the decisive shape features: weight them up
-    weights = {"bottle": [1, 1, 3, 3], "glass": [1, 1, 1, 3, 2], "hand": None}
+    # feature weights (after the template scores): the stopper and liquid features decide the states
+    weights = {"bottle": [3, 1, 1, 0.5, 0.5], "glass": [3, 1, 2, 0.5, 0.5],
+               "hand": [1.5, 1.5, 2, 1, 1, 1, 1, 2, 2, 1.5, 1, 1]}
     clfs = {k: library.build_classifier(k, *v, seed=seed, weights=weights[k]) for k, v in data.items()}
+    # the grasp site relative to the seen distal end of the hand, per posture (median, m)
+    cal["hand_offset"] = {k: [round(float(x), 4) for x in np.median(v, axis=0)] for k, v in sorted(offsets.items())}
     meta = {"seed": seed, "scenes": n_scenes, "examples": {k: len(v[2]) for k, v in data.items()}}
     return library.save(root or library.ROOT, clfs, cal, meta)

@@ -20,16 +20,17 @@ from dataclasses import dataclass, field
 import mujoco
 import numpy as np
 
-from assistbot.human.arm import grip_orientation
+from assistbot.human.arm import ORIENT, SHOULDER_XY, grip_orientation, rot_y, rot_z
 from assistbot.human.behaviours import GRASP_HEIGHT, HOLD_OUT, REST
 from assistbot.world import HAND_POSTURES, HUMAN_ARM_JOINTS, HUMAN_HAND_JOINTS, layout
 from assistbot.world.arrangement import Arrangement, Placement
 from assistbot.world.scripted import ik
 
-POSTURES = ("none", "reach", "grasp_ag", "grasp_sg", "open_palm_request", "pointing")
+POSTURES = ("none", "reach", "grasp_ag", "grasp_sg", "open_palm_request", "pointing", "remove_stopper", "pour", "drink")
 _PURPOSE = {"library": 1, "test": 2, "bench": 3, "calibrate": 4}
 #: finger posture (world.HAND_POSTURES) per perceived hand posture
-_FINGERS = {"none": "open", "reach": "open", "grasp_ag": "ag", "grasp_sg": "sg", "open_palm_request": "request", "pointing": "point"}
+_FINGERS = {"none": "open", "reach": "open", "grasp_ag": "ag", "grasp_sg": "sg", "open_palm_request": "request", "pointing": "point",
+            "remove_stopper": "ag", "pour": "sg", "drink": "sg"}
 HAND_X_MAX = -0.03          # the human's grasp site never goes further toward the robot
 
 
@@ -92,9 +93,11 @@ class SceneSampler:
 
     def sample(self, posture: str | None = None) -> SceneSpec:
         rng = self.rng
+        posture = posture or str(rng.choice(POSTURES))
+        if posture in ("remove_stopper", "pour", "drink"):
+            return self._object_action(posture)
         arr = self.arrangement()
         head = (float(rng.uniform(-0.2, 0.2)), float(rng.uniform(0.65, 0.85)))
-        posture = posture or str(rng.choice(POSTURES))
         hws = [o for o in ("bottle", "glass") if getattr(arr, o).zone == "HWS"]
         target, variant = None, "table"
         if posture in ("reach", "grasp_ag", "grasp_sg"):
@@ -109,6 +112,40 @@ class SceneSampler:
             target = str(rng.choice(["bottle", "glass"]))
         jitter = tuple(float(v) for v in rng.uniform(-0.03, 0.03, 3))
         return SceneSpec(arr, head, posture, target, variant, jitter, float(rng.uniform(0.35, 0.75)))
+
+    def _object_action(self, posture: str) -> SceneSpec:
+        """remove_stopper: a closed bottle (standing in the HWS or held out); pour: an open bottle
+        tilted over an upright glass in the HWS; drink: the glass at the mouth."""
+        rng = self.rng
+        need = {"remove_stopper": ("closed", None), "pour": ("open", "empty"), "drink": (None, "full")}[posture]
+        for _ in range(200):
+            arr = self.arrangement()
+            b, g = arr.bottle, arr.glass
+            bs = need[0] or b.state
+            gs = need[1] if need[1] != "empty" else str(rng.choice(["empty", "full"]))
+            gs = gs or g.state
+            if posture == "drink":
+                gs = str(rng.choice(["full", "empty"]))
+            bz = "HWS" if posture in ("remove_stopper", "pour") else b.zone
+            gz = "HWS" if posture in ("pour", "drink") else g.zone
+            gp = g.position if gz == g.zone else _random_position(rng, "glass", gz)
+            if posture == "pour":   # within the right hand's comfortable reach
+                gp = (float(rng.uniform(-0.30, -0.12)), float(rng.uniform(-0.35, 0.0)))
+            new = Arrangement(Placement(bz, bs, b.position if bz == b.zone else _random_position(rng, "bottle", bz)),
+                              Placement(gz, gs, gp))
+            try:
+                new.validate()
+            except Exception:  # noqa: BLE001
+                continue
+            break
+        else:
+            raise RuntimeError(f"could not draw an arrangement for {posture}")
+        # drinking: the robot looks at its partner's face (the mouth is above the view at 0.65+)
+        head = (float(rng.uniform(-0.2, 0.2)), float(rng.uniform(0.40, 0.60) if posture == "drink" else rng.uniform(0.65, 0.85)))
+        target = {"remove_stopper": "bottle", "pour": "bottle", "drink": "glass"}[posture]
+        variant = str(rng.choice(["table", "held_out"])) if posture == "remove_stopper" else "table"
+        jitter = tuple(float(v) for v in rng.uniform(-0.03, 0.03, 3))
+        return SceneSpec(new, head, posture, target, variant, jitter, float(rng.uniform(0.0, 1.0)))
 
     def _with_object_in_hws(self, arr: Arrangement, o: str, head, posture: str) -> SceneSpec:
         for _ in range(50):
@@ -134,24 +171,35 @@ def _qadr(world, joint: str) -> int:
     return int(world.model.jnt_qposadr[world.model.joint(joint).id])
 
 
-def _move_free(world, body: str, pos, quat=None) -> None:
-    """Move a free body (and, for a full glass / the bottle's liquid, the particles in it) rigidly."""
+def _move_free(world, body: str, pos, R=None) -> None:
+    """Move an upright free body to `pos` (rotated by R, 3x3, about its origin, if given), and with it
+    rigidly the particles inside (a full glass, the bottle's liquid) and a bottle's stopper."""
     m, d = world.model, world.data
     qa = m.jnt_qposadr[m.body_jntadr[world.body_id[body]]]
-    delta = np.asarray(pos, float) - d.qpos[qa:qa + 3]
+    base = d.qpos[qa:qa + 3].copy()
+    pos = np.asarray(pos, float)
+    keep = R is None
+    R = np.eye(3) if keep else np.asarray(R, float)
+
+    def move(a: int) -> None:
+        d.qpos[a:a + 3] = pos + R @ (d.qpos[a:a + 3] - base)
+
     if body in ("bottle", "glass"):
         pts = d.qpos[world.particle_qadr[:, None] + np.arange(3)]
-        base = d.qpos[qa:qa + 3]
         inside = np.hypot(pts[:, 0] - base[0], pts[:, 1] - base[1]) < 0.045
         inside &= (pts[:, 2] > base[2] - 0.01) & (pts[:, 2] < base[2] + 0.2)
         for i in np.flatnonzero(inside):
-            d.qpos[world.particle_qadr[i]:world.particle_qadr[i] + 3] += delta
+            move(world.particle_qadr[i])
     if body == "bottle" and d.eq_active[world.eq_stopper]:
         sa = m.jnt_qposadr[m.body_jntadr[world.body_id["stopper"]]]
-        d.qpos[sa:sa + 3] += delta
+        move(sa)
     d.qpos[qa:qa + 3] = pos
-    if quat is not None:
-        d.qpos[qa + 3:qa + 7] = quat
+    if not keep:
+        q = np.empty(4)
+        mujoco.mju_mat2Quat(q, R.ravel())
+        d.qpos[qa + 3:qa + 7] = q
+        if body == "bottle" and d.eq_active[world.eq_stopper]:
+            d.qpos[sa + 3:sa + 7] = q
 
 
 def _set_arm(world, target, R) -> None:
@@ -222,6 +270,22 @@ def pose(world, spec: SceneSpec) -> Labels:
         p[0] = min(p[0], HAND_X_MAX)
         _set_arm(world, p, grip_orientation("point", tgt))
         _set_fingers(world, "point")
+    elif spec.posture == "remove_stopper":
+        o = "bottle"
+        if spec.variant == "held_out":   # held out toward the robot (which would hold it steady)
+            base = np.array([HOLD_OUT[0] - 0.04 + jit[0], HOLD_OUT[1] + jit[1], 0.85 + 0.5 * jit[2]])
+            _move_free(world, o, base)
+            mujoco.mj_kinematics(m, d)
+        s_ = d.site_xpos[world.site_id["stopper_grasp"]].copy()
+        p = s_ + np.array([0, 0, 0.04 * spec.reach_fraction])       # pulling: 0-4 cm above the stopper
+        _set_arm(world, p, grip_orientation("ag", p))
+        _set_fingers(world, "ag")
+    elif spec.posture == "pour":
+        _pose_pour(world, spec)
+        in_hand = "bottle"
+    elif spec.posture == "drink":
+        _pose_drink(world, spec)
+        in_hand = "glass"
     else:  # none: hand near the resting place
         p = REST + jit * np.array([1.0, 1.0, 0.5])
         _set_arm(world, p, grip_orientation("ag", p + np.array([0.2, 0, 0])))
@@ -230,6 +294,55 @@ def pose(world, spec: SceneSpec) -> Labels:
         _robot_hold(world, spec.robot_holds)
     mujoco.mj_forward(m, d)
     return labels_of(world, spec, in_hand, held_out)
+
+
+def _hold_in_hand(world, o: str, R0: np.ndarray, grasp: float) -> None:
+    """Put object o in the human's hand as a grip with hand orientation R0 (object upright) would
+    hold it, at the hand's actual pose (grasp: grasp-site height above the object's base)."""
+    mujoco.mj_kinematics(world.model, world.data)
+    site = world.site_id["human_r_grasp"]
+    p = world.data.site_xpos[site].copy()
+    Ra = world.data.site_xmat[site].reshape(3, 3)
+    Ro = Ra @ R0.T
+    _move_free(world, o, p - Ro @ np.array([0, 0, grasp]), Ro)
+
+
+def _pose_pour(world, spec: SceneSpec) -> None:
+    """The open bottle in a side grip, rolled about the fingers' axis (100-130 deg) so that its
+    mouth is over the glass (the glass beside the hand, toward the palm)."""
+    d = world.data
+    jit = np.asarray(spec.jitter)
+    g = d.xpos[world.body_id["glass"]].copy()
+    b = g[:2] - SHOULDER_XY
+    b = np.append(b / np.linalg.norm(b), 0.0)                     # fingers' bearing
+    a = np.array([-b[1], b[0], 0.0])                              # toward the palm (the midline side)
+    theta = np.radians(100 + 30 * spec.reach_fraction)
+    k = np.cross([0, 0, 1.0], a)
+    K = np.array([[0, -k[2], k[1]], [k[2], 0, -k[0]], [-k[1], k[0], 0]])
+    Rt = np.eye(3) + np.sin(theta) * K + (1 - np.cos(theta)) * K @ K
+    mouth = g + np.array([0, 0, layout.GLASS_HEIGHT + 0.03]) + 0.5 * jit
+    base = mouth - Rt @ np.array([0, 0, 0.194])
+    h = GRASP_HEIGHT[("bottle", "sg")]
+    R0 = rot_z(float(np.arctan2(b[1], b[0]))) @ ORIENT["sg"]
+    _set_arm(world, base + Rt @ np.array([0, 0, h]), Rt @ R0)
+    _set_fingers(world, "sg")
+    _hold_in_hand(world, "bottle", R0, h)
+
+
+def _pose_drink(world, spec: SceneSpec) -> None:
+    """The glass in a side grip at the mouth, tilted toward the face (0.3-1.4 rad)."""
+    jit = np.asarray(spec.jitter)
+    mouth = world.site_pos("human_mouth")
+    tilt = 0.3 + 1.1 * spec.reach_fraction
+    Rc = rot_z(0.75) @ ORIENT["sg"]
+    Rg = rot_y(-tilt)
+    h = GRASP_HEIGHT[("glass", "sg")]
+    lip = np.array([0, 0, layout.GLASS_HEIGHT - h]) + np.array([-layout.GLASS_INNER_RADIUS, 0, 0])
+    away = 0.04 * (1 + jit[0] / 0.03)
+    p = mouth + np.array([0.015 + away, jit[1], -0.015 - 0.5 * away]) - Rg @ lip
+    _set_arm(world, p, Rg @ Rc)
+    _set_fingers(world, "sg")
+    _hold_in_hand(world, "glass", Rc, h)
 
 
 def _robot_hold(world, o: str) -> None:
@@ -271,6 +384,6 @@ def labels_of(world, spec: SceneSpec, in_hand: str | None, held_out: bool) -> La
     lab.hand_position = tuple(float(v) for v in hp)
     if spec.posture == "pointing":
         lab.pointed_at = spec.target
-    if spec.posture in ("reach", "grasp_ag", "grasp_sg"):
+    if spec.posture in ("reach", "grasp_ag", "grasp_sg", "remove_stopper", "pour", "drink"):
         lab.directed_at = spec.target
     return lab

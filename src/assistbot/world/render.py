@@ -24,8 +24,11 @@ from assistbot.errors import UserError
 
 _BACKEND: str | None = None
 
-#: segmentation labels of `Renderer.segmentation`
-SEGMENT_LABELS = {0: "background", 1: "table", 2: "robot", 3: "human", 4: "bottle", 5: "stopper", 6: "glass", 7: "liquid"}
+#: segmentation labels of `Renderer.segmentation`.  The person is split by material: "skin"
+#: (hands, arms, face), "shirt" (torso and sleeves) and "human" (the rest: hair, trousers, chair)
+#: -- vision calibrates its colour ranges from these labels
+SEGMENT_LABELS = {0: "background", 1: "table", 2: "robot", 3: "human", 4: "bottle", 5: "stopper", 6: "glass", 7: "liquid",
+                  8: "skin", 9: "shirt"}
 
 
 def _osmesa_works() -> bool:
@@ -172,6 +175,8 @@ class Renderer:
 def _geom_labels(model: mujoco.MjModel) -> np.ndarray:
     inv = {v: k for k, v in SEGMENT_LABELS.items()}
     labels = np.zeros(model.ngeom, np.uint8)
+    mats = {model.material(i).name: i for i in range(model.nmat)}
+    by_material = {mats[m]: inv[m] for m in ("skin", "shirt") if m in mats}
     for g in range(model.ngeom):
         body = model.body(model.geom_bodyid[g]).name
         root = model.body(model.body_rootid[model.geom_bodyid[g]]).name
@@ -182,5 +187,5 @@ def _geom_labels(model: mujoco.MjModel) -> np.ndarray:
         elif root.startswith("robot"):
             labels[g] = inv["robot"]
         elif root.startswith("human"):
-            labels[g] = inv["human"]
+            labels[g] = by_material.get(int(model.geom_matid[g]), inv["human"])
     return labels
