@@ -68,3 +68,19 @@ def test_ik_model_agrees_with_the_world():
         w.data.qpos[m.jnt_qposadr[m.joint(j).id]] = READY_POSTURE[k]
     mujoco.mj_forward(m, w.data)
     assert np.allclose(ik.tcp_pose(READY_POSTURE).translation(), w.data.site("robot_tcp").xpos, atol=1e-6)
+
+
+def test_fast_qp_gives_minks_answer():
+    """ArmIK's direct daqp path (limits as bounds) solves the same QP as mink.solve_ik."""
+    from assistbot.robot.ik import IKParams
+
+    fast, ref = ArmIK(IKParams(fast_qp=True)), ArmIK(IKParams(fast_qp=False))
+    rng = np.random.default_rng(1)
+    q = READY_POSTURE.copy()
+    for _ in range(60):
+        p = np.array([0.0, 0.0, 0.95]) + rng.uniform(-0.15, 0.15, 3)  # near the middle line: collision rows too
+        target = mink.SE3.from_rotation_and_translation(mink.SO3.from_z_radians(rng.uniform(-0.5, 0.5)), p)
+        a, b = fast.solve(q, target, 0.02), ref.solve(q, target, 0.02)
+        assert a.ok and b.ok
+        assert np.allclose(a.q, b.q, atol=1e-6)
+        q = a.q

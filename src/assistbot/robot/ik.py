@@ -12,9 +12,11 @@ the `IKResult`, never raised; the commanded configuration then stays put.
 
 from __future__ import annotations
 
+import ctypes
 import time
 from dataclasses import dataclass
 
+import daqp
 import mink
 import mujoco
 import numpy as np
@@ -37,6 +39,7 @@ class IKParams:
     detection_distance: float = 0.15  # m: pairs closer than this enter the QP
     collision: bool = True
     speed_scale: float = 0.9        # fraction of the MJCF joint speeds the IK may use
+    fast_qp: bool = True            # joint limits as QP bounds, daqp called directly (ArmIK._solve_qp)
 
 
 @dataclass
@@ -90,6 +93,10 @@ class ArmIK:
         t = gid(TABLE_GEOMS)[0]
         self._table_top = float(d0.geom_xpos[t][2] + np.abs(d0.geom_xmat[t].reshape(3, 3)[2]) @ m.geom_size[t])
         self._reach = (p.human_clearance + p.detection_distance, p.table_clearance + 0.05, 0.1)
+        self._lo, self._hi = self.model.jnt_range[:, 0].copy(), self.model.jnt_range[:, 1].copy()
+        self._vmax = self.max_speed * p.speed_scale
+        self._gain = self.base_limits[0].gain
+        self._damping_eye = p.damping * np.eye(self.model.nv)
         self.tcp_site = self.model.site("robot_tcp").id
         self.shoulder = self.configuration.data.xpos[self.model.body("robot_link1").id].copy()
 
@@ -104,6 +111,37 @@ class ArmIK:
         low = pa[:, 2] - self._arm_r - self._table_top
         gaps = (float(gap_h.min()), float(low[self._hand_rows].min()), float(low[~self._hand_rows].min()))
         return [lim for lim, gap, reach in zip(self.collision_limits, gaps, self._reach) if gap < reach]
+
+    def _solve_qp(self, q: np.ndarray, dt: float, collision_limits: list) -> np.ndarray:
+        """The QP `mink.solve_ik` builds, with the joint position and speed limits as box bounds.
+
+        Same tasks (mink's FrameTask and PostureTask objectives) and the same collision rows (mink's
+        CollisionAvoidanceLimit); the ConfigurationLimit (gain 0.95) and VelocityLimit become the
+        bounds lb <= dq <= ub handed to daqp directly, which skips qpsolvers' problem assembly and
+        2 x 14 inequality rows. `tests/test_robot_ik.py` checks it gives mink's answer."""
+        cfg = self.configuration
+        H = self._damping_eye.copy()
+        c = np.zeros(len(q))
+        for task in (self.tcp_task, self.posture_task):
+            Ht, ct = task.compute_qp_objective(cfg)
+            H += Ht
+            c += ct
+        step = self._vmax * dt
+        ub = np.minimum(step, self._gain * (self._hi - q))
+        lb = np.maximum(-step, self._gain * (self._lo - q))
+        rows = [lim.compute_qp_inequalities(cfg, dt) for lim in collision_limits]
+        rows = [r for r in rows if r.G is not None]
+        if rows:
+            G = np.vstack([r.G for r in rows])
+            h = np.concatenate([r.h for r in rows])
+        else:
+            G, h = np.zeros((0, len(q))), np.zeros(0)
+        bupper = np.concatenate([ub, h])
+        blower = np.concatenate([lb, np.full(len(h), -1e30)])
+        x, _, exitflag, _ = daqp.solve(H, c, G, bupper, blower, np.zeros(len(bupper), dtype=ctypes.c_int))
+        if exitflag <= 0:
+            raise mink.NoSolutionFound("daqp")
+        return x / dt
 
     def set_posture(self, q: np.ndarray) -> None:
         self.posture_task.set_target(np.asarray(q, float))
@@ -121,8 +159,11 @@ class ArmIK:
         limits = self.base_limits + (self._active_collision_limits() if use_collision else [])
         t0 = time.perf_counter()
         try:
-            v = mink.solve_ik(self.configuration, [self.tcp_task, self.posture_task], dt, "daqp",
-                              damping=self.p.damping, limits=limits)
+            if self.p.fast_qp:
+                v = self._solve_qp(q, dt, limits[len(self.base_limits):])
+            else:
+                v = mink.solve_ik(self.configuration, [self.tcp_task, self.posture_task], dt, "daqp",
+                                  damping=self.p.damping, limits=limits)
         except mink.NoSolutionFound as exc:
             us = (time.perf_counter() - t0) * 1e6
             err = self.tcp_task.compute_error(self.configuration)

@@ -144,9 +144,14 @@ class Grip(Phase):
             if t >= self.timeout:
                 return Status.FAILED, f"{self.name}: no grasp of {prim.object} after {self.timeout:.1f} s (touching {[x.body for x in g.touches()]})"
             return Status.RUNNING, ""
-        if t >= self.settle:
+        # let go: wait until the fingers are open (the hand then backs off without dragging the object)
+        if t >= self.settle and (float(g.finger_angles().max()) < OPENED or t >= self.timeout):
             return Status.SUCCEEDED, ""
         return Status.RUNNING, ""
+
+
+#: finger angle (rad) below which the hand counts as open after a release
+OPENED = 0.1
 
 
 class WaitFor(Phase):
