@@ -60,3 +60,40 @@ def test_ray_and_local_give_identical_rows_and_ray_resumes(tmp_path):
     import pyarrow.parquet as pq
 
     assert pq.read_table(ray_dir / "results.parquet").num_rows == 6
+
+
+@pytest.mark.slow
+def test_joins_a_running_cluster_with_address_auto(tmp_path):
+    """A cluster started with 'ray start --head' (stopped again by its pid) runs the sweep via --address auto."""
+    import os
+    import shutil
+    import signal
+    import socket
+    import time
+
+    ray_cli = shutil.which("ray", path=os.path.dirname(sys.executable))
+    assert ray_cli, "the ray command is installed with the ray package"
+    s = socket.socket()
+    s.bind(("127.0.0.1", 0))
+    port = s.getsockname()[1]
+    s.close()
+    head = subprocess.Popen([ray_cli, "start", "--head", "--block", "--num-cpus", "2", "--port", str(port),
+                             "--include-dashboard=false", "--disable-usage-stats"],
+                            stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, start_new_session=True)
+    try:
+        time.sleep(12)
+        assert head.poll() is None
+        scenario = tmp_path / "tiny.yaml"
+        scenario.write_text(TINY)
+        r = subprocess.run([sys.executable, "-m", "assistbot.cli", "sweep", str(scenario), "--param", "cognition.k=0.8,1.2",
+                            "--perception", "oracle", "--no-progress", "--out", str(tmp_path / "out"),
+                            "--executor", "ray", "--address", "auto"], capture_output=True, text=True, timeout=600)
+        assert r.returncode == 0, r.stderr
+        assert "on cluster at auto" in r.stderr
+        assert len(read_rows(tmp_path / "out" / "results.csv")[1]) == 2
+    finally:
+        head.send_signal(signal.SIGTERM)  # 'ray start --block' stops the processes it started
+        try:
+            head.wait(timeout=60)
+        except subprocess.TimeoutExpired:
+            os.killpg(head.pid, signal.SIGKILL)

@@ -144,8 +144,12 @@ class RayExecutor:
                 ray.init(**kwargs)
         except (ConnectionError, TimeoutError, RuntimeError, ValueError) as exc:
             msg = " ".join(str(exc).split())[:300]
-            raise UserError("--address", str(self.address or "local"),
-                            f"cannot start or join Ray: {msg}; for a cluster run 'ray start --head' there first") from None
+            hint = "for a cluster run 'ray start --head' there first"
+            if self.address and self.address != "auto" and "://" not in self.address:
+                hint += ("; if it uses token authentication (Ray >= 2.59 turns it on for clusters started on this "
+                         "machine), set RAY_AUTH_MODE=token and its token (RAY_AUTH_TOKEN, see 'ray get-auth-token'), "
+                         "or use --address auto on the head node")
+            raise UserError("--address", str(self.address or "local"), f"cannot start or join Ray: {msg}; {hint}") from None
         self._ray = ray
         self._started = True
 

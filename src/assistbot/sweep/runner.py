@@ -134,11 +134,11 @@ def run_sweep(spec: SweepSpec, out: str | Path, executor=None, progress: bool = 
                     if on_row is not None:
                         on_row(row)
                 if bar is not None:
-                    bar.update(1)
                     post = {"drank": f"{outcome.succeeded}/{outcome.ran}"}
                     if outcome.crashed:
                         post["crashed"] = outcome.crashed
                     bar.set_postfix(post, refresh=False)
+                    bar.update(1)
         except KeyboardInterrupt as exc:
             outcome.interrupted = True
             exc.outcome = outcome  # type: ignore[attr-defined]
