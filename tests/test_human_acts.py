@@ -5,11 +5,12 @@ block that holds an object only through a weld (physics decides; the human only 
 import numpy as np
 import pytest
 
+from assistbot.human.arm import HANDOVER_X_MAX
 from assistbot.human.behaviours import DRINK_FRACTION, POINT_X_MAX
 from assistbot.human.controller import HumanController
 from assistbot.human.script import parse_human
 from assistbot.human.standin import StandIn, build_world_with_standin
-from assistbot.world import Arrangement, layout
+from assistbot.world import Arrangement, build_world, layout
 
 
 def _arr(bottle: dict, glass: dict) -> Arrangement:
@@ -33,6 +34,21 @@ def _run_until_done(hc, s, limit: float, name: str | None = None):
         if ends and hc.current is None:
             return ends
     return [e for e in hc.events() if e.kind in ("success", "failure")]
+
+
+class _HandWatch:
+    """Robot tick that also records how far the human's hand geoms reach toward the robot (max world x)."""
+
+    def __init__(self, w, s):
+        m = w.model
+        self.w, self.s = w, s
+        self.geoms = [g for g in range(m.ngeom) if m.body(m.geom_bodyid[g]).name.startswith(("human_r_hand", "human_r_index",
+                                                                                            "human_r_fingers", "human_r_thumb"))]
+        self.x_max = -1.0
+
+    def __call__(self, t):
+        self.s.tick(t)
+        self.x_max = max(self.x_max, float(self.w.data.geom_xpos[self.geoms, 0].max()))
 
 
 def _ok(ends, name):
@@ -153,9 +169,12 @@ def test_take_from_robot(obj, at):
     hc.run(0.02, robot=s.tick)
     s.carry_to(at)
     hc.start("take_from_robot", object=obj)
-    _ok(_run_until_done(hc, s, 25.0), "take_from_robot")
+    watch = _HandWatch(w, s)
+    hc.run(12.0, robot=watch)
+    _ok(hc.events(), "take_from_robot")
     st = w.state()
     assert st.human_holds == obj and s.holds() is None and st.objects[obj].pos[0] < -0.15
+    assert watch.x_max <= HANDOVER_X_MAX                      # the hand stayed in the hand-over zone
 
 
 @pytest.mark.parametrize("where", [(0.15, -0.05), (0.15, 0.10)])
@@ -244,3 +263,30 @@ def test_script_steps_wait_for_after_events():
     hc.hear("inform:fill_glass", t_said)
     _ok(_run_until_done(hc, s, 10.0, "request"), "request")
     assert hc.events("start")[1].t >= t_said + hc.profile.reaction_delay - 1e-6
+
+
+# ---------------------------------------------------------------------------- the middle line and the slow profile
+def test_a_request_toward_an_object_deep_in_the_rws_stops_at_the_line():
+    """A script asks the hand to put something down in the RWS: the parser refuses it; a hold-out
+    toward a robot far away is clamped and logged, and the fingers never cross the hand-over zone."""
+    w, s, hc = _setup(_arr({"zone": "HWS", "state": "closed"}, {"zone": "RWS", "state": "empty"}))
+    s.place((0.30, -0.05, 0.95))
+    hc.start("grasp", object="bottle", grip="ag", hold_out=True)
+    watch = _HandWatch(w, s)
+    hc.run(6.0, robot=watch)
+    hc.arm.move_to((0.30, -0.05, 0.95), t=w.time)              # reach on toward the robot's hand
+    hc.run(3.0, robot=watch)
+    assert hc.events("clamped") and hc.events("clamped")[-1].detail["target"][0] == pytest.approx(0.30)
+    assert watch.x_max <= HANDOVER_X_MAX
+
+
+def test_slow_profile_is_two_to_three_times_slower():
+    times = {}
+    for profile in ("active", "slow"):
+        w = build_world(Arrangement.from_options("HWS:closed", "RWS:inverted"), seed=0)
+        hc = HumanController(w, profile=profile, seed=2)
+        hc.run(25.0)
+        ends = [e for e in hc.events() if e.kind in ("success", "failure") and e.what == "grasp"]
+        assert ends and ends[0].kind == "success"
+        times[profile] = ends[0].t - hc.events("start")[0].t
+    assert 2.0 <= times["slow"] / times["active"] <= 3.5, times

@@ -30,8 +30,9 @@ from assistbot.world import HAND_POSTURES, HUMAN_ARM_JOINTS, HUMAN_HAND_JOINTS
 
 #: the hand-over zone reaches this far across the middle line (world/table x, m)
 HANDOVER_X_MAX = 0.05
-#: how far the fingertips may reach beyond the grasp site (m): the site is clamped this far back
-FINGER_REACH = 0.08
+#: how far the open, straight fingers reach beyond the grasp site (m; the distal finger capsules'
+#: centres, measured 0.086 m): the site is clamped this far back from HANDOVER_X_MAX
+FINGER_REACH = 0.10
 #: lowest grasp-site height (world z, m): 2 cm above the table top
 MIN_Z = 0.77
 #: a reach that starts with the grasp site below this height (world z) first lifts the hand

@@ -66,7 +66,7 @@ DEMOS: dict[str, Demo] = {
                      caption="picks the glass up and puts it down elsewhere in the HWS"),
     "hand_to_robot": Demo({"bottle": _B_HWS, "glass": _G_RWS}, "hand_to_robot",
                           ("hand_to_robot", {"object": "bottle", "grip": "ag"}), robot="take",
-                          caption="hands the bottle to the robot (grey block: robot stand-in)"),
+                          caption="hands the bottle to the robot (grey block: stand-in)"),
     "take_from_robot": Demo({"bottle": _B_RWS, "glass": _G_RWS}, "take_from_robot", robot="offer_glass",
                             say=(2.5, "offer:glass"),
                             caption="takes the glass the robot offers (told 'offer:glass')"),
