@@ -121,6 +121,7 @@ def _plot_param(rows: list[dict], param: str, scenarios: list[str], path: Path) 
     ax1.set_ylim(-0.05, 1.05)
     ax1.set_ylabel("success rate (95% Wilson CI)")
     ax2.set_ylabel("time to drink, s (mean, 95% CI)")
+    ax2.set_xlim(ax1.get_xlim())  # the same values in the same places
     if not ax2.lines:
         ax2.text(0.5, 0.5, "no episode drank", ha="center", va="center", transform=ax2.transAxes, color="grey")
     for ax in (ax1, ax2):
@@ -136,6 +137,7 @@ def _plot_param(rows: list[dict], param: str, scenarios: list[str], path: Path) 
 
 
 def _plot_heatmap(rows: list[dict], p1: str, p2: str, path: Path) -> None:
+    """Success rate over two parameters; beside it the mean time to drink when any episode drank."""
     import matplotlib
 
     matplotlib.use("Agg")
@@ -144,6 +146,7 @@ def _plot_heatmap(rows: list[dict], p1: str, p2: str, path: Path) -> None:
 
     v1, v2 = _ordered([r.get(p1) for r in rows]), _ordered([r.get(p2) for r in rows])
     rate = np.full((len(v2), len(v1)), np.nan)
+    ttd = np.full((len(v2), len(v1)), np.nan)
     count = np.zeros((len(v2), len(v1)), dtype=int)
     groups: dict[tuple, list[dict]] = defaultdict(list)
     for r in rows:
@@ -151,20 +154,29 @@ def _plot_heatmap(rows: list[dict], p1: str, p2: str, path: Path) -> None:
     for (a, b), grp in groups.items():
         i, j = v2.index(b), v1.index(a)
         c = Cell.of(grp)
-        rate[i, j], count[i, j] = c.rate, c.n
-    fig, ax = plt.subplots(figsize=(1.2 * len(v1) + 3, 0.8 * len(v2) + 2.2), constrained_layout=True)
-    im = ax.imshow(rate, origin="lower", cmap="viridis", vmin=0, vmax=1, aspect="auto")
-    for i in range(len(v2)):
-        for j in range(len(v1)):
-            if count[i, j]:
-                ax.text(j, i, f"{rate[i, j]:.2f}\nn={count[i, j]}", ha="center", va="center", fontsize=8,
-                        color="white" if rate[i, j] < 0.6 else "black")
-    ax.set_xticks(range(len(v1)), [_fmt_value(v) for v in v1])
-    ax.set_yticks(range(len(v2)), [_fmt_value(v) for v in v2])
-    ax.set_xlabel(p1)
-    ax.set_ylabel(p2)
-    fig.colorbar(im, ax=ax, label="success rate")
-    ax.set_title(f"success rate over {p1} x {p2}", fontsize=10)
+        rate[i, j], ttd[i, j], count[i, j] = c.rate, c.ttd_mean, c.n
+    panels = [("success rate", rate, dict(cmap="viridis", vmin=0, vmax=1), "{:.2f}")]
+    if np.isfinite(ttd).any():
+        panels.append(("mean time to drink, s", ttd, dict(cmap="magma_r"), "{:.1f}"))
+    w = 1.2 * len(v1) + 3
+    fig, axes = plt.subplots(1, len(panels), figsize=(w * len(panels), 0.8 * len(v2) + 2.2), constrained_layout=True,
+                             squeeze=False)
+    for ax, (label, data, style, fmt) in zip(axes[0], panels):
+        im = ax.imshow(data, origin="lower", aspect="auto", **style)
+        lo, hi = np.nanmin(data), np.nanmax(data)
+        for i in range(len(v2)):
+            for j in range(len(v1)):
+                if count[i, j]:
+                    val = data[i, j]
+                    text = ("–" if not np.isfinite(val) else fmt.format(val)) + f"\nn={count[i, j]}"
+                    bright = np.isfinite(val) and hi > lo and (val - lo) / (hi - lo) > 0.6
+                    ax.text(j, i, text, ha="center", va="center", fontsize=8, color="black" if bright else "white")
+        ax.set_xticks(range(len(v1)), [_fmt_value(v) for v in v1])
+        ax.set_yticks(range(len(v2)), [_fmt_value(v) for v in v2])
+        ax.set_xlabel(p1)
+        ax.set_ylabel(p2)
+        fig.colorbar(im, ax=ax, label=label)
+        ax.set_title(f"{label} over {p1} x {p2}", fontsize=10)
     fig.savefig(path, dpi=110)
     plt.close(fig)
 
