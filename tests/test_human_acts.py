@@ -233,6 +233,20 @@ def test_passive_takes_the_object_offered():
     assert w.state().human_holds == "glass" and s.holds() is None
 
 
+def test_passive_drinks_from_a_full_glass_handed_to_him():
+    w, s, hc = _setup(_arr({"zone": "RWS", "state": "open"}, {"zone": "RWS", "state": "full"}))
+    s.grasp_at("glass")
+    s.release_when_taken = True
+    hc.run(0.02, robot=s.tick)
+    s.carry_to((0.0, -0.05, 0.78), speed=0.15)
+    hc.run(3.0, robot=s.tick)
+    assert w.state().glass_state == "full"
+    hc.hear("offer:glass", w.time)
+    _ok(_run_until_done(hc, s, 40.0, "drink"), "drink")
+    assert [e.what for e in hc.events("start")] == ["take_from_robot", "drink"]
+    assert w.state().liquid.drunk >= DRINK_FRACTION * layout.N_PARTICLES
+
+
 def test_passive_drinks_when_told_the_glass_is_ready():
     w, s, hc = _setup(_arr({"zone": "RWS", "state": "open"}, {"zone": "HWS", "state": "full"}))
     hc.run(2.0, robot=s.tick)

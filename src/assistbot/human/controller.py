@@ -7,7 +7,8 @@ only to those tags and to what `see` (default `perception.see_robot`) shows of t
 each after the profile's reaction delay.
 
 What it does next, in this order: a running behaviour continues; a pending response to the
-robot (passive and active alike) starts; otherwise the scenario script's next step whose
+robot or follow-up of a finished behaviour (passive and active alike: e.g. a full glass taken
+from the robot is drunk from) starts; otherwise the scenario script's next step whose
 `after:` event has happened; otherwise, for a profile with initiative and no script, the
 default policy (`policy.next_move`).  Every start, success and failure goes to `log`.
 """
@@ -186,6 +187,10 @@ class HumanController:
                 self.log.append(Event(self.t, status, b.name, {"reason": b.reason, **b.args}))
                 self.done.append(b)
                 self.current = None
+                if status == "success":
+                    for resp in policy.follow_up(self, b):
+                        if resp not in self._pending:
+                            self._pending.append(resp)
         if self.current is None:
             self._next()
             if self.current is not None:

@@ -56,6 +56,15 @@ def response_to_sight(c, key: str) -> list[tuple[str, dict]]:
     return []
 
 
+def follow_up(c, done) -> list[tuple[str, dict]]:
+    """What every partner does next after a behaviour of his succeeded (passive ones too).
+
+    Holding a full glass he was handed, he drinks from it."""
+    if done.name == "take_from_robot" and c.world.human_holding() == "glass" and c.world.state().glass_state == "full":
+        return [("drink", {})]
+    return []
+
+
 def still_relevant(c, name: str, args: dict) -> bool:
     """A response that waited while the hand was busy: does what it answers still hold?"""
     if name == "take_from_robot":
