@@ -133,12 +133,11 @@ class RayExecutor:
             if why:
                 raise UserError("--address", self.address, f"no Ray cluster there ({why}); start one with "
                                 "'ray start --head' on the head node, or leave out --address for a local Ray")
-        kwargs = dict(include_dashboard=False, logging_level="ERROR", log_to_driver=False,
-                      runtime_env={"env_vars": dict(THREAD_ENV)})
+        kwargs: dict = dict(logging_level="ERROR", log_to_driver=False, runtime_env={"env_vars": dict(THREAD_ENV)})
         if self.address:
             kwargs["address"] = self.address
-        else:
-            kwargs["num_cpus"] = self.cpus or available_cpus()
+        else:  # a private local Ray: these apply only to a cluster that ray.init starts
+            kwargs.update(num_cpus=self.cpus or available_cpus(), include_dashboard=False)
         try:
             with _quiet_stderr():  # Ray's C++ core logs each failed connection attempt
                 ray.init(**kwargs)
