@@ -139,6 +139,41 @@ def test_the_scripted_human_pulls_the_stopper_off_the_bottle_the_robot_holds():
     assert_safe(s)
 
 
+def _stand_in_hold_out(w, human, obj):
+    """The scripted human grasps `obj` from above and holds it up near the middle line (within the robot's reach)."""
+    human.start("grasp", object=obj, grip="ag", lift=True)
+    while human.current is not None and w.time < 8.0:
+        settle(w, CONTROL_DT, human)
+    assert w.human_holding() == obj
+    above = 0.17 if obj == "bottle" else 0.085  # the above grip's height over the object's base
+    dur = human.arm.move_to(np.array([STAND_IN_HOLD_OUT_X, -0.05, P.HUMAN_HOLD_OUT_BASE_Z + above]),
+                            human.arm.hand_pose()[1], t=w.time)
+    settle(w, dur + 0.5, human)
+
+
+def test_bottle_held_out_by_the_human_is_taken_and_held_for_the_stopper():
+    w, robot = make("HWS:closed@-0.22,-0.12", "RWS:empty")
+    human = HumanController(w, "passive")
+    _stand_in_hold_out(w, human, "bottle")
+    prim = P.HoldBottleForStopper(robot, human_holds=lambda: w.human_holding() == "bottle",
+                                  stopper_removed=lambda: not w.data.eq_active[w.eq_stopper])
+    stopper = w.model.body("stopper").id
+
+    def tick(t):
+        if w.human_holding() and w.robot_holding() == "bottle":
+            w.set_hand_posture("open")  # the human lets go once the robot holds it
+        on = prim.progress.phase == "hold steady for the stopper" and w.data.eq_active[w.eq_stopper]
+        w.data.xfrc_applied[stopper, 2] = 15.0 if on else 0.0  # a stand-in hand pulls the stopper
+        human.tick(t)
+
+    pr, s = run(w, prim, body_xy(w, "bottle"), each_tick=tick)
+    assert pr.status is Status.SUCCEEDED, pr.reason
+    settle(w, 0.5, human)
+    st = w.state()
+    assert st.bottle_open and st.objects["bottle"].zone == "RWS" and upright(w, "bottle"), st.summary()
+    assert_safe(s)
+
+
 def test_stopper_hold_times_out_with_a_reason():
     w, robot = make("RWS:closed", "HWS:empty")
     prim = P.HoldBottleForStopper(robot, timeout=2.0)
@@ -214,14 +249,7 @@ STAND_IN_HOLD_OUT_X = -0.02
 def test_receive_takes_the_object_from_the_human_hand_and_puts_it_in_rws(obj, arrangement):
     w, robot = make(*arrangement)
     human = HumanController(w, "passive")
-    human.start("grasp", object=obj, grip="ag", lift=True)
-    while human.current is not None and w.time < 8.0:
-        settle(w, CONTROL_DT, human)
-    assert w.human_holding() == obj
-    above = 0.17 if obj == "bottle" else 0.085  # the above grip's height over the object's base
-    dur = human.arm.move_to(np.array([STAND_IN_HOLD_OUT_X, -0.05, P.HUMAN_HOLD_OUT_BASE_Z + above]),
-                            human.arm.hand_pose()[1], t=w.time)
-    settle(w, dur + 0.5, human)
+    _stand_in_hold_out(w, human, obj)
     hand = w.model.site("human_r_grasp").id
 
     def tick(t):  # the human lets go once the robot's hand holds the object (as hand_to_robot does)

@@ -22,8 +22,8 @@ from assistbot.robot.ik_model import ARM_JOINTS
 #: the hand-over zone reaches this far past the middle line into the HWS (m, table x); it contains
 #: the place where the human holds objects out (assistbot.human.behaviours.HOLD_OUT, x = -0.10)
 HANDOVER_DEPTH = 0.15
-#: how far the open fingers reach beyond the TCP along the approach (m, from the MJCF)
-OPEN_HAND_REACH = 0.08
+#: how far the open fingers reach beyond the TCP along the approach (m: 0.08 straight in the MJCF; 0.095 measured while closing at an angle)
+OPEN_HAND_REACH = 0.10
 #: the TCP never goes deeper into the HWS than this (table x): the fingertips stay in the zone
 TCP_MIN_X = -(HANDOVER_DEPTH - OPEN_HAND_REACH)
 #: the arm's reach from the shoulder to the TCP (m): 0.35 + 0.33 + 0.138, less a margin off the singular straight arm

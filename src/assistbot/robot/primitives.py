@@ -600,7 +600,10 @@ class HoldBottleForStopper(Primitive):
     """Grasp the closed bottle, hold it out upright near the middle line where the human can pull the
     stopper, keep it there until ``stopper_removed()`` (perception), put it back where it stood, let go.
 
-    The grip holds the bottle by friction against the pull; the world decides when the fit gives."""
+    A bottle seen in the HWS (target x < 0) can only be one the human holds out: the robot grasps it
+    at the human's hold-out height, waits until the human's hand lets go (``human_holds()``), and
+    afterwards puts it down in the RWS at RECEIVE_SPOT. The grip holds the bottle by friction against
+    the pull; the world decides when the fit gives."""
 
     name = "hold_bottle_for_stopper"
     HOLD_XY = (-0.02, -0.02)
@@ -612,6 +615,21 @@ class HoldBottleForStopper(Primitive):
         self.home_xy: np.ndarray | None = None
 
     def phases(self):
+        hold = [
+            _hold_out(self.HOLD_BASE, self.HOLD_XY),
+            WaitFor("hold steady for the stopper", lambda p: p.stopper_removed(), self.timeout,
+                    "the stopper was not removed"),
+            Wait("settle", 0.3),
+        ]
+        if self.xy()[0] < 0.0:  # held out by the human
+            self.home_xy = np.array(RECEIVE_SPOT, float)
+            return _reach_and_grasp(self, base_z=HUMAN_HOLD_OUT_BASE_Z) + [
+                Wait("hold", 1.5),
+                WaitFor("wait for the human to let go", lambda p: not p.human_holds(), 10.0, "the human did not let go"),
+                *hold,
+                *_put_down_at(lambda p: p.home_xy),
+                *_retract(),
+            ]
         return _reach_and_grasp(self) + [
             _FreezeXY(),
             Move("lift", lambda p: _side_grasp_pose(p, up=LIFT), duration=1.2),
