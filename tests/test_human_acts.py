@@ -8,6 +8,7 @@ import pytest
 from assistbot.human.arm import HANDOVER_X_MAX
 from assistbot.human.behaviours import DRINK_FRACTION, POINT_X_MAX
 from assistbot.human.controller import HumanController
+from assistbot.human.profiles import PROFILES
 from assistbot.human.script import parse_human
 from assistbot.human.standin import StandIn, build_world_with_standin
 from assistbot.world import Arrangement, build_world, layout
@@ -304,3 +305,21 @@ def test_slow_profile_is_two_to_three_times_slower():
         assert ends and ends[0].kind == "success"
         times[profile] = ends[0].t - hc.events("start")[0].t
     assert 2.0 <= times["slow"] / times["active"] <= 3.5, times
+
+
+def test_active_wrong_grip_then_corrected_after_the_robots_error():
+    """The default policy's seeded wrong grip (here certain): side grip held out; told that the robot
+    cannot open it so, the active partner puts the bottle down and hands it over from above."""
+    w = build_world_with_standin(Arrangement.from_options("HWS:closed", "RWS:inverted"), seed=0)
+    s = StandIn(w)
+    hc = HumanController(w, profile=PROFILES["active"].with_(wrong_grip=1.0), seed=0, see=s.view)
+    hc.run(6.0, robot=s.tick)
+    first = hc.events("start")[0]
+    assert first.what == "grasp" and first.detail["grip"] == "sg" and hc.events("note")[0].what == "wrong_grip"
+    assert w.state().human_holds == "bottle"
+    hc.hear("error:cannot_remove_stopper", w.time)
+    s.take_when_offered = "bottle"
+    _ok(_run_until_done(hc, s, 20.0, "hand_to_robot"), "hand_to_robot")
+    starts = [(e.what, e.detail.get("grip")) for e in hc.events("start")]
+    assert starts[:3] == [("grasp", "sg"), ("put_down", None), ("hand_to_robot", "ag")]
+    assert s.holds() == "bottle" and w.state().human_holds is None

@@ -21,9 +21,9 @@ from assistbot.world import layout
 Gen = Generator[None, None, tuple[bool, str]]
 
 #: where the human holds an object out / holds out the open palm (world, m): the hand-over zone
-HOLD_OUT = np.array([-0.10, -0.05, 0.95])
+HOLD_OUT = np.array([-0.05, -0.05, 0.97])
 #: lowest height (world z) of a held-out object's base: about 10 cm above the table
-HOLD_OUT_BASE_Z = 0.85
+HOLD_OUT_BASE_Z = 0.88
 #: a resting place of the hand near the body
 REST = np.array([-0.34, -0.17, 0.86])
 LIFT = 0.07                       # m lifted after a grasp
@@ -89,13 +89,18 @@ def _wait_until(c, cond: Callable[[], bool], timeout: float) -> Generator[None, 
     return True
 
 
-def _move(c, p, R=None, speed: float | None = None, tol: float = 0.03) -> Generator[None, None, bool]:
-    """Reach to p (with rotation R); True when the hand got there."""
+def _move(c, p, R=None, speed: float | None = None, tol: float = 0.03,
+          stop: Callable[[], bool] | None = None) -> Generator[None, None, bool]:
+    """Reach to p (with rotation R); True when the hand got there (or `stop()` became true on the way:
+    the hand then stays where it is)."""
     if c.profile.hesitation > 0:
         yield from _wait(c, c.profile.hesitation)
     dur = c.arm.move_to(p, R, t=c.t, speed=speed)
     t_end = c.t + dur + 1.5
     while not c.arm.arrived(c.t, tol):
+        if stop is not None and stop():
+            c.arm.move_to(c.arm.hand_pose()[0], c.arm.hand_pose()[1], t=c.t, duration=0.3)
+            return True
         if c.t >= t_end:
             return False
         yield
@@ -155,11 +160,14 @@ def hold_out(c, object: str | None = None) -> Gen:
     held = c.world.human_holding()
     if held is None or (object is not None and held != object):
         return False, "nothing to hold out" if held is None else f"holds the {held}, not the {object}"
+    # keep the grip, turned about the vertical so the fingers point along the shoulder's bearing to HOLD_OUT
     _, R = c.arm.hand_pose()
-    R = rot_z(np.arctan2(*(HOLD_OUT[:2] - c.arm.p_goal[:2])[::-1]) - np.arctan2(R[1, 2] * -1, R[0, 2] * -1)) @ R
+    bearing = np.arctan2(*(HOLD_OUT[:2] - SHOULDER_XY)[::-1])
+    R = rot_z(bearing - np.arctan2(-R[1, 2], -R[0, 2])) @ R
     target = HOLD_OUT.copy()
     target[2] = max(target[2], HOLD_OUT_BASE_Z + float(c.arm.hand_pose()[0][2] - _center_base(c, held)[2]))
-    ok = yield from _move(c, target, R)
+    # the robot may take hold of it before the arm is fully out: the hand then stops there
+    ok = yield from _move(c, target, R, stop=lambda: c.view.holds == held)
     return (ok and c.world.human_holding() == held), f"{held} held out"
 
 
@@ -253,9 +261,15 @@ def point(c, object: str, hold: float = 1.5) -> Gen:
     return bool(ok and err < POINT_TOLERANCE), f"pointed at the {object} ({np.degrees(err):.0f} deg off)"
 
 
-def pull_stopper(c, timeout: float = 3.0) -> Gen:
-    """Grip the stopper from above and pull it up; works only if something holds the bottle down."""
+def pull_stopper(c, timeout: float = 3.0, wait_for_robot: float = 0.0) -> Gen:
+    """Grip the stopper from above and pull it up; works only if something holds the bottle down.
+
+    ``wait_for_robot`` > 0: first wait up to that many seconds until the robot is seen holding
+    the bottle (a person invited to pull the stopper waits for the robot to hold it out).
+    """
     w = c.world
+    if wait_for_robot > 0 and not (yield from _wait_until(c, lambda: c.view.holds == "bottle", wait_for_robot)):
+        return False, "the robot did not hold the bottle"
     if not w.data.eq_active[w.eq_stopper]:
         return False, "the bottle is already open"
     if w.human_holding() is not None:

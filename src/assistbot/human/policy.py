@@ -11,7 +11,7 @@ from __future__ import annotations
 from assistbot.task.drinking import TAG_RESPONSES
 
 #: behaviours that a robot's utterance does not interrupt (the hand is busy with an object)
-UNINTERRUPTIBLE = ("pull_stopper", "drink", "put_down", "turn_glass", "take_from_robot")
+UNINTERRUPTIBLE = ("pull_stopper", "drink", "put_down", "turn_glass", "take_from_robot", "hand_to_robot")
 
 
 def _scene(c) -> dict:
@@ -34,9 +34,10 @@ def response_to_tag(c, tag: str) -> list[tuple[str, dict]]:
     holding = c.world.human_holding()
     if kind == "remove_stopper":
         out = []
-        if holding is not None:
+        handing_over = c.current is not None and c.current.name == "hand_to_robot"
+        if holding is not None and not handing_over:
             out.append(("put_down", {}))
-        return out + [("pull_stopper", {})]
+        return out + [("pull_stopper", {"wait_for_robot": 30.0})]
     if kind == "take_object":
         return [("take_from_robot", {"object": what})]
     if kind == "give_object":

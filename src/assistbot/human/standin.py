@@ -26,6 +26,8 @@ HOLDABLE = ("bottle", "glass")
 #: the block's offset from an object's body origin when it takes hold (world, m): beside the
 #: object on the robot's side, at a height a gripper would take it
 HOLD_OFFSET = {"bottle": np.array([0.06, 0.0, 0.08]), "glass": np.array([0.065, 0.0, 0.05])}
+#: s an object held out must stay still before the stand-in reaches for it
+STILL_FOR = 0.3
 #: where the stand-in waits, far in the robot's workspace
 PARK = np.array([0.35, -0.30, 1.10])
 
@@ -60,6 +62,7 @@ class StandIn:
         self._t = 0.0
         self._last_obj: np.ndarray | None = None
         self._withdraw_when_free: str | None = None
+        self._still_since: float | None = None
 
     # ------------------------------------------------------------------ state
     @property
@@ -140,7 +143,9 @@ class StandIn:
         if self.take_when_offered is not None and self.holds() is None and w.human_holding() == self.take_when_offered:
             obj = self.take_when_offered
             o = w.data.xpos[w.body_id[obj]].copy()
-            still = self._last_obj is not None and float(np.linalg.norm(o - self._last_obj)) < 0.0005
+            moved = self._last_obj is None or float(np.linalg.norm(o - self._last_obj)) > 0.0005
+            self._still_since = t if moved or self._still_since is None else self._still_since
+            still = t - self._still_since >= STILL_FOR
             self._last_obj = o
             # the object is held out when it is near the middle line and has come to rest
             if o[0] > -0.20 and still and not self.moving():
