@@ -97,3 +97,11 @@ def test_joins_a_running_cluster_with_address_auto(tmp_path):
             head.wait(timeout=60)
         except subprocess.TimeoutExpired:
             os.killpg(head.pid, signal.SIGKILL)
+        current = "/tmp/ray/ray_current_cluster"  # left behind by a stopped head: remove ours, or ray.init() trips on it
+        try:
+            with open(current) as fh:
+                ours = fh.read().strip().endswith(f":{port}")
+            if ours:
+                os.remove(current)
+        except OSError:
+            pass

@@ -136,8 +136,8 @@ class RayExecutor:
         kwargs: dict = dict(logging_level="ERROR", log_to_driver=False, runtime_env={"env_vars": dict(THREAD_ENV)})
         if self.address:
             kwargs["address"] = self.address
-        else:  # a private local Ray: these apply only to a cluster that ray.init starts
-            kwargs.update(num_cpus=self.cpus or available_cpus(), include_dashboard=False)
+        else:  # a private local Ray ("local": never an existing cluster, nor a stale /tmp/ray/ray_current_cluster)
+            kwargs.update(address="local", num_cpus=self.cpus or available_cpus(), include_dashboard=False)
         try:
             with _quiet_stderr():  # Ray's C++ core logs each failed connection attempt
                 ray.init(**kwargs)
