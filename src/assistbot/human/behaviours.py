@@ -229,14 +229,18 @@ def take_from_robot(c, object: str | None = None, timeout: float = 20.0) -> Gen:
     return c.world.human_holding() == obj, f"took the {obj}"
 
 
-def request(c, hold: float = 0.0) -> Gen:
-    """Hold out an open, empty palm toward the robot (a request); keep it there `hold` s."""
+def request(c, hold: float = 3.0) -> Gen:
+    """Hold out an open, empty palm toward the robot (a request) for `hold` s, then lower the hand.
+
+    A request is a gesture, not a posture to keep: left out, it would go on asking."""
     if c.world.human_holding() is not None:
         return False, "the hand is not empty"
     c.arm.set_posture("request")
     R = grip_orientation("request", HOLD_OUT)
     ok = yield from _move(c, HOLD_OUT, R)
     yield from _wait(c, hold)
+    c.arm.set_posture("open")
+    yield from _to_rest(c)
     return ok, "open hand held out"
 
 
@@ -268,8 +272,11 @@ def pull_stopper(c, timeout: float = 3.0, wait_for_robot: float = 0.0) -> Gen:
     the bottle (a person invited to pull the stopper waits for the robot to hold it out).
     """
     w = c.world
-    if wait_for_robot > 0 and not (yield from _wait_until(c, lambda: c.view.holds == "bottle", wait_for_robot)):
-        return False, "the robot did not hold the bottle"
+    if wait_for_robot > 0:
+        # held out toward the person, and still for a moment: then reach for the stopper
+        if not (yield from _wait_until(c, lambda: c.view.offers == "bottle", wait_for_robot)):
+            return False, "the robot did not hold the bottle out"
+        yield from _wait(c, 1.0)
     if not w.data.eq_active[w.eq_stopper]:
         return False, "the bottle is already open"
     if w.human_holding() is not None:
@@ -329,9 +336,14 @@ def turn_glass(c) -> Gen:
     return bool(ok and up), "glass upright" if up else "the glass is not upright"
 
 
-def drink(c, timeout: float = 6.0) -> Gen:
-    """Bring the glass (grasped if needed) to the mouth and tilt it; counts when >= 75% of its liquid reaches the mouth."""
+def drink(c, timeout: float = 6.0, put_back: bool = True) -> Gen:
+    """Bring the glass (grasped if needed) to the mouth and tilt it; counts when >= 75% of its liquid
+    reaches the mouth.  Then (put_back) the glass goes back upright where it was taken from, if that
+    was in the HWS, else near the body."""
     w = c.world
+    base_xy = _center_base(c, "glass")[:2].copy()
+    if base_xy[0] > -0.12:
+        base_xy = np.array([-0.24, 0.05])
     if w.human_holding() != "glass":
         ok, why = yield from grasp(c, "glass", "sg")
         if not ok:
@@ -343,12 +355,13 @@ def drink(c, timeout: float = 6.0) -> Gen:
     # The pouring lip: the point of the rim on the side toward the face.  The glass tilts
     # about the world y axis (toward the face, -x); the lip is held just in front of and
     # below the mouth, so the liquid that flows over it passes the lips.
-    # The glass is round: any hand yaw about its axis holds it the same.  The drinking hand
-    # orientation is a canonical side grip (fingers DRINK_YAW to the left of straight ahead),
-    # whatever the yaw of the grasp was; the glass's pose in the hand stays what the grip made it.
+    # The glass is round: any hand yaw about the vertical holds it the same.  The drinking hand
+    # orientation is the grip's, turned about the vertical so the fingers point DRINK_YAW to the
+    # left of straight ahead, whatever the yaw of the grasp was.
     hand, R0 = c.arm.hand_pose()
     gpos, Rg0 = _pos(c, "glass"), w.data.xmat[w.body_id["glass"]].reshape(3, 3).copy()
-    Rc = rot_z(DRINK_YAW) @ ORIENT["sg"]
+    fingers = -R0[:, 2]
+    Rc = rot_z(DRINK_YAW - np.arctan2(fingers[1], fingers[0])) @ R0   # yawed only: the glass stays as upright as it is
     g_in_hand, Rg_in_hand = R0.T @ (gpos - hand), R0.T @ Rg0
     axis0 = Rc @ Rg_in_hand[:, 2]
     toward_face = np.array([-1.0, 0.0, 0.0]) - axis0 * -axis0[0]
@@ -374,9 +387,11 @@ def drink(c, timeout: float = 6.0) -> Gen:
     enough = max(1, int(np.ceil(DRINK_FRACTION * max(n0, 1))))
     got = yield from _wait_until(c, lambda: int(w.drunk.sum()) - drunk0 >= enough and n0 > 0, timeout)
     drunk = int(w.drunk.sum()) - drunk0
-    p, R = pose(0.2, away=0.10)
+    p, R = pose(0.0, away=0.10)
     yield from _move(c, p, R)
     c.note("drink", {"in_glass": n0, "drunk": drunk})
+    if put_back:
+        yield from put_down(c, "glass", at=tuple(base_xy))
     if n0 == 0:
         return False, "the glass was empty: nothing to drink"
     return bool(got), f"drank {drunk} of {n0} particles"
