@@ -160,7 +160,7 @@ def test_bottle_held_out_by_the_human_is_taken_and_held_for_the_stopper():
     stopper = w.model.body("stopper").id
 
     def tick(t):
-        if w.human_holding() and w.robot_holding() == "bottle":
+        if w.human_holding() == "bottle" and w.robot_holding() == "bottle":
             w.set_hand_posture("open")  # the human lets go once the robot holds it
         on = prim.progress.phase == "hold steady for the stopper" and w.data.eq_active[w.eq_stopper]
         w.data.xfrc_applied[stopper, 2] = 15.0 if on else 0.0  # a stand-in hand pulls the stopper
@@ -253,7 +253,7 @@ def test_receive_takes_the_object_from_the_human_hand_and_puts_it_in_rws(obj, ar
     hand = w.model.site("human_r_grasp").id
 
     def tick(t):  # the human lets go once the robot's hand holds the object (as hand_to_robot does)
-        if w.human_holding() and w.robot_holding() == obj:
+        if w.human_holding() == obj and w.robot_holding() == obj:
             w.set_hand_posture("open")
         human.tick(t)
 

@@ -78,26 +78,33 @@ def run(args: argparse.Namespace) -> int:
                human_holds=lambda: world.human_holding() is not None,
                locate=lambda name: body_xy(world, name)(),
                stopper_removed=lambda: not world.data.eq_active[world.eq_stopper])
+    # an object the robot must take from the human's hand: Receive-object, or the bottle to hold for the stopper
+    held = None
     if obj == "held_out":
         held = "bottle" if arrangement.bottle.zone == "HWS" else "glass"
         if getattr(arrangement, held).zone != "HWS":
             raise UserError("arguments", "arrangement", "Receive-object needs the bottle or the glass in the HWS")
-        human.start("grasp", object=held, grip="ag", lift=True)
         target = lambda: tuple(world.data.site_xpos[hand][:2])  # noqa: E731
     else:
+        if getattr(arrangement, obj).zone == "HWS":
+            if args.action != "Grasp-hold-bottle-to-remove-cup":
+                raise UserError("arguments", "arrangement", f"{args.action} needs the {obj} in the RWS")
+            held = obj
         target = body_xy(world, obj)
+    if held is not None:
+        human.start("grasp", object=held, grip="ag", lift=True)
 
     state = {"held_out": False}
 
     def human_part(t: float) -> None:
         phase = prim.progress.phase
-        if human.current is None and phase.startswith("wait for the human to take") and not human.done:
+        started = {b.name for b in human.done}
+        if human.current is None and phase.startswith("wait for the human to take") and "take_from_robot" not in started:
             human.start("take_from_robot", object=prim.object)
-        elif human.current is None and phase.startswith("hold steady for the stopper") and not human.done:
+        elif human.current is None and phase.startswith("hold steady for the stopper") and "pull_stopper" not in started:
             human.start("pull_stopper")
-        if obj == "held_out":
-            if world.human_holding() and world.robot_holding():
-                world.set_hand_posture("open")
+        if held is not None and world.human_holding() == held and world.robot_holding() == held:
+            world.set_hand_posture("open")  # the human lets go once the robot holds it
         human.tick(t)
 
     renderer = Renderer(world.model, 320, 240)
@@ -112,7 +119,7 @@ def run(args: argparse.Namespace) -> int:
                     w.append_data(renderer.rgb(world.data, "scene_cam"))
                 frames["k"] += 1
 
-            if obj == "held_out":  # the human first grasps the object and holds it out near the middle line
+            if held is not None:  # the human first grasps the object and holds it out near the middle line
                 while world.time < 15.0 and not state["held_out"]:
                     tick(world.time)
                     world.step(10)
@@ -129,6 +136,9 @@ def run(args: argparse.Namespace) -> int:
         renderer.close()
     print(f"{args.action}: {pr.status.value} after {pr.t:.1f} s {pr.reason}; wrote {path}")
     print(world.state().summary())
+    if os.environ.get("ASSISTBOT_ACT_DEBUG"):
+        for e in human.log:
+            print(e)
     print(f"safety: {100 * safety.human:.0f} cm from the human's head/torso, hand reached x = {safety.min_x:.3f} m, "
           f"joint limits {'kept' if safety.limits else 'exceeded at ' + safety.worst_joint}")
     return 0

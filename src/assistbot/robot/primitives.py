@@ -329,7 +329,7 @@ LIFT = 0.12
 BOTTLE_MOUTH_ABOVE_GRASP = 0.114
 GLASS_HEIGHT = 0.10
 #: where an object is held out for the human to take: its centre (table x, y) and its base height above the table
-HOLD_OUT_XY = (-0.02, -0.04)
+HOLD_OUT_XY = (-0.04, -0.04)
 HOLD_OUT_BASE = 0.11
 #: where the human holds an object out (assistbot.human.behaviours: the base at about 0.85-0.87 m world)
 HUMAN_HOLD_OUT_BASE_Z = 0.86
@@ -606,7 +606,7 @@ class HoldBottleForStopper(Primitive):
     the pull; the world decides when the fit gives."""
 
     name = "hold_bottle_for_stopper"
-    HOLD_XY = (-0.02, -0.02)
+    HOLD_XY = (-0.045, -0.02)
     HOLD_BASE = 0.10
 
     def __init__(self, robot, obj="bottle", timeout: float = 30.0, **kw):
