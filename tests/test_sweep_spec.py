@@ -194,6 +194,11 @@ def test_wilson_and_mean_intervals():
     lo, hi = wilson(0, 10)
     assert lo == 0.0 and hi == pytest.approx(0.2775, abs=1e-4)
     assert wilson(0, 0) == (0.0, 1.0)
+    for n in range(1, 40):  # the ends are exact: a rate of 0 or 1 is inside its interval, never by -1e-17
+        assert wilson(0, n)[0] == 0.0 and wilson(n, n)[1] == 1.0
+        for s in range(n + 1):
+            lo, hi = wilson(s, n)
+            assert lo <= s / n <= hi
     m, lo, hi = mean_ci([1.0, 2.0, 3.0])
     assert m == 2.0 and lo == pytest.approx(2 - 2.4842, abs=1e-3) and hi == pytest.approx(2 + 2.4842, abs=1e-3)
 

@@ -86,11 +86,13 @@ def table_rows(rows: list[dict], factor: str) -> list[tuple[Any, Cell]]:
 
 
 def _markdown_table(factor: str, cells: list[tuple[Any, Cell]]) -> list[str]:
-    out = [f"| {factor} | n | drank | success rate | 95% CI (Wilson) | time to drink (s) | 95% CI (t) | errors communicated | spilled |",
-           "|---|---:|---:|---:|---|---:|---|---:|---:|"]
+    out = [f"| {factor} | n | drank | success rate | 95% CI (Wilson) | time to drink (s) | 95% CI (t) | decisions | "
+           "errors communicated | spilled | min distance (m) |",
+           "|---|---:|---:|---:|---|---:|---|---:|---:|---:|---:|"]
     for v, c in cells:
         out.append(f"| {_fmt_value(v)} | {c.n} | {c.successes} | {_f(c.rate)} | {_ci(c.rate_low, c.rate_high)} | "
-                   f"{_f(c.ttd_mean, 1)} | {_ci(c.ttd_low, c.ttd_high, 1)} | {_f(c.errors_mean)} | {_f(c.spilled_mean, 3)} |")
+                   f"{_f(c.ttd_mean, 1)} | {_ci(c.ttd_low, c.ttd_high, 1)} | {_f(c.decisions_mean, 1)} | "
+                   f"{_f(c.errors_mean)} | {_f(c.spilled_mean, 3)} | {_f(c.min_distance, 3)} |")
     return out
 
 
@@ -109,14 +111,14 @@ def _plot_param(rows: list[dict], param: str, scenarios: list[str], path: Path) 
         cells = [(v, c) for v, c in table_rows(grp, param)]
         xs = [xs_of[v] for v, _ in cells]
         rate = [c.rate for _, c in cells]
-        err = [[c.rate - c.rate_low for _, c in cells], [c.rate_high - c.rate for _, c in cells]]
+        err = [[max(0.0, c.rate - c.rate_low) for _, c in cells], [max(0.0, c.rate_high - c.rate) for _, c in cells]]
         ax1.errorbar(xs, rate, yerr=err, marker="o", capsize=4, label=label if len(groups) > 1 else None)
         ttd = [(xs_of[v], c) for v, c in cells if not math.isnan(c.ttd_mean)]
         if ttd:
             tx = [x for x, _ in ttd]
             ty = [c.ttd_mean for _, c in ttd]
-            terr = [[0 if math.isnan(c.ttd_low) else c.ttd_mean - c.ttd_low for _, c in ttd],
-                    [0 if math.isnan(c.ttd_high) else c.ttd_high - c.ttd_mean for _, c in ttd]]
+            terr = [[0 if math.isnan(c.ttd_low) else max(0.0, c.ttd_mean - c.ttd_low) for _, c in ttd],
+                    [0 if math.isnan(c.ttd_high) else max(0.0, c.ttd_high - c.ttd_mean) for _, c in ttd]]
             ax2.errorbar(tx, ty, yerr=terr, marker="s", capsize=4, label=label if len(groups) > 1 else None)
     ax1.set_ylim(-0.05, 1.05)
     ax1.set_ylabel("success rate (95% Wilson CI)")
@@ -208,7 +210,8 @@ def write_report(results_dir: str | Path, out: str | Path | None = None) -> list
         md += [f"## {factor}", ""] + _markdown_table(factor, cells) + [""]
         for v, c in cells:
             summary.append([factor, _fmt_value(v), c.n, c.successes, c.rate, c.rate_low, c.rate_high,
-                            c.ttd_mean, c.ttd_low, c.ttd_high, c.errors_mean, c.spilled_mean])
+                            c.ttd_mean, c.ttd_low, c.ttd_high, c.decisions_mean, c.errors_mean, c.spilled_mean,
+                            c.min_distance])
         if factor in varied:
             png = out_dir / f"success_vs_{_safe(factor)}.png"
             _plot_param(rows, factor, scenarios, png)
@@ -239,7 +242,8 @@ def write_report(results_dir: str | Path, out: str | Path | None = None) -> list
     with open(summary_path, "w", encoding="utf-8", newline="") as fh:
         w = csv.writer(fh, lineterminator="\n")
         w.writerow(["factor", "value", "n", "drank", "success_rate", "rate_low", "rate_high", "time_to_drink_mean",
-                    "time_to_drink_low", "time_to_drink_high", "errors_communicated_mean", "spilled_mean"])
+                    "time_to_drink_low", "time_to_drink_high", "decisions_mean", "errors_communicated_mean",
+                    "spilled_mean", "min_distance_human"])
         for r in summary:
             w.writerow(["" if isinstance(x, float) and math.isnan(x) else (round(x, 6) if isinstance(x, float) else x) for x in r])
     return [report, summary_path] + written

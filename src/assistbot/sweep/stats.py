@@ -22,7 +22,9 @@ def wilson(successes: int, n: int, confidence: float = 0.95) -> tuple[float, flo
     denom = 1 + z * z / n
     centre = (p + z * z / (2 * n)) / denom
     half = z / denom * math.sqrt(p * (1 - p) / n + z * z / (4 * n * n))
-    return (max(0.0, centre - half), min(1.0, centre + half))
+    lo = 0.0 if successes == 0 else max(0.0, centre - half)  # exact ends: no -1e-17 below a rate of 0
+    hi = 1.0 if successes == n else min(1.0, centre + half)
+    return (min(lo, p), max(hi, p))
 
 
 def mean_ci(values: Sequence[float], confidence: float = 0.95) -> tuple[float, float, float]:
@@ -54,6 +56,8 @@ class Cell:
     ttd_high: float
     errors_mean: float
     spilled_mean: float
+    decisions_mean: float = math.nan  # AEL decisions per episode
+    min_distance: float = math.nan  # closest the robot came to the human's head/torso over these episodes, m
 
     @classmethod
     def of(cls, rows: Sequence[dict]) -> "Cell":
@@ -63,7 +67,10 @@ class Cell:
         ttd = mean_ci([r["time_to_drink"] for r in rows if r.get("success") is True and r.get("time_to_drink") is not None])
         errs = [float(r["errors_communicated"]) for r in rows if r.get("errors_communicated") is not None]
         spill = [float(r["spilled_fraction"]) for r in rows if r.get("spilled_fraction") is not None]
+        dec = [float(r["n_decisions"]) for r in rows if r.get("n_decisions") is not None]
+        dist = [float(r["min_distance_human"]) for r in rows if r.get("min_distance_human") is not None]
         return cls(n=n, successes=s, rate=s / n if n else math.nan, rate_low=lo, rate_high=hi,
                    ttd_mean=ttd[0], ttd_low=ttd[1], ttd_high=ttd[2],
                    errors_mean=sum(errs) / len(errs) if errs else math.nan,
-                   spilled_mean=sum(spill) / len(spill) if spill else math.nan)
+                   spilled_mean=sum(spill) / len(spill) if spill else math.nan,
+                   decisions_mean=sum(dec) / len(dec) if dec else math.nan, min_distance=min(dist) if dist else math.nan)
