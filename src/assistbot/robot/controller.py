@@ -20,8 +20,9 @@ from assistbot.robot.ik import ArmIK, IKParams, IKResult
 from assistbot.robot.ik_model import ARM_JOINTS
 
 #: the hand-over zone reaches this far past the middle line into the HWS (m, table x); it contains
-#: the place where the human holds objects out (assistbot.human.behaviours.HOLD_OUT, x = -0.10)
-HANDOVER_DEPTH = 0.15
+#: the place where the human holds objects out (assistbot.human.behaviours.HOLD_OUT, x = -0.05,
+#: with the object's centre up to ~2 cm further back), so the TCP may go to x = -0.08
+HANDOVER_DEPTH = 0.18
 #: how far the open fingers reach beyond the TCP along the approach (m: 0.08 straight in the MJCF; 0.095 measured while closing at an angle)
 OPEN_HAND_REACH = 0.10
 #: the TCP never goes deeper into the HWS than this (table x): the fingertips stay in the zone
