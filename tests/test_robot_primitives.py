@@ -12,17 +12,19 @@ import numpy as np
 import pytest
 
 from assistbot.human.controller import HumanController
+from assistbot.robot import mjcf_patch
 from assistbot.robot import primitives as P
 from assistbot.robot.actions import ACTION_PRIMITIVES, NOT_YET_PHYSICAL
 from assistbot.robot.controller import HANDOVER_DEPTH, RobotController
 from assistbot.robot.primitives import Status
 from assistbot.robot.sim import CONTROL_DT, body_xy, run
 from assistbot.task.drinking import ROBOT_ACTIONS
-from assistbot.world import Arrangement, build_world
+from assistbot.world import Arrangement
 
 
 def make(bottle: str, glass: str):
-    w = build_world(Arrangement.from_options(bottle, glass), seed=0)
+    # the world's scene with the robot's finger spacing widened in memory (robot.mjcf_patch) until robot.xml has it
+    w = mjcf_patch.build_world(Arrangement.from_options(bottle, glass), seed=0)
     return w, RobotController(w.model, w.data)
 
 
@@ -63,9 +65,7 @@ def test_place_in_rws_puts_the_object_down_upright_at_the_spot(obj, start, spot)
     assert pr.status is Status.SUCCEEDED, pr.reason
     settle(w, 0.5)
     p = w.data.xpos[w.body_id[obj]]
-    # the glass (80 mm) is wider than the open fingers' bases leave (2 x 37 mm): backing off the
-    # open hand drags it by up to ~5 cm until robot.xml's finger spacing is widened
-    assert np.hypot(p[0] - spot[0], p[1] - spot[1]) < (0.07 if obj == "glass" else 0.03)
+    assert np.hypot(p[0] - spot[0], p[1] - spot[1]) < 0.03
     assert w.state().objects[obj].zone == "RWS"
     assert upright(w, obj) and p[2] < 0.76
     assert_safe(s)
@@ -139,29 +139,17 @@ def test_the_scripted_human_pulls_the_stopper_off_the_bottle_the_robot_holds():
     assert_safe(s)
 
 
-def _stand_in_hold_out(w, human, obj):
-    """The scripted human grasps `obj` from above and holds it up near the middle line (within the robot's reach)."""
-    human.start("grasp", object=obj, grip="ag", lift=True)
-    while human.current is not None and w.time < 8.0:
-        settle(w, CONTROL_DT, human)
-    assert w.human_holding() == obj
-    above = 0.17 if obj == "bottle" else 0.085  # the above grip's height over the object's base
-    dur = human.arm.move_to(np.array([STAND_IN_HOLD_OUT_X, -0.05, P.HUMAN_HOLD_OUT_BASE_Z + above]),
-                            human.arm.hand_pose()[1], t=w.time)
-    settle(w, dur + 0.5, human)
-
-
 def test_bottle_held_out_by_the_human_is_taken_and_held_for_the_stopper():
     w, robot = make("HWS:closed@-0.22,-0.12", "RWS:empty")
     human = HumanController(w, "passive")
-    _stand_in_hold_out(w, human, "bottle")
+    human.start("hand_to_robot", object="bottle", grip="ag")
+    while not (w.human_holding() == "bottle" and human.arm.arrived(w.time, 0.03)) and w.time < 10.0:
+        settle(w, CONTROL_DT, human)
     prim = P.HoldBottleForStopper(robot, human_holds=lambda: w.human_holding() == "bottle",
                                   stopper_removed=lambda: not w.data.eq_active[w.eq_stopper])
     stopper = w.model.body("stopper").id
 
     def tick(t):
-        if w.human_holding() == "bottle" and w.robot_holding() == "bottle":
-            w.set_hand_posture("open")  # the human lets go once the robot holds it
         on = prim.progress.phase == "hold steady for the stopper" and w.data.eq_active[w.eq_stopper]
         w.data.xfrc_applied[stopper, 2] = 15.0 if on else 0.0  # a stand-in hand pulls the stopper
         human.tick(t)
@@ -240,30 +228,25 @@ def test_hand_over_without_a_taker_fails_with_a_reason():
 
 
 # --------------------------------------------------------------------------- receiving from the human
-#: a stand-in hold-out: the human's hand holds the object up near the middle line, in the robot's reach
-STAND_IN_HOLD_OUT_X = -0.02
-
-
 @pytest.mark.parametrize("obj, arrangement", [("bottle", ("HWS:closed@-0.22,-0.12", "RWS:empty")),
                                               ("glass", ("RWS:closed@0.2,0.2", "HWS:empty@-0.20,0.05"))])
 def test_receive_takes_the_object_from_the_human_hand_and_puts_it_in_rws(obj, arrangement):
+    """The scripted human's own `hand_to_robot`: grasp, hold out, let go once the robot holds it."""
     w, robot = make(*arrangement)
     human = HumanController(w, "passive")
-    _stand_in_hold_out(w, human, obj)
+    human.start("hand_to_robot", object=obj, grip="ag")
+    while not (w.human_holding() == obj and human.arm.arrived(w.time, 0.03)) and w.time < 10.0:
+        settle(w, CONTROL_DT, human)
+    assert w.human_holding() == obj
     hand = w.model.site("human_r_grasp").id
-
-    def tick(t):  # the human lets go once the robot's hand holds the object (as hand_to_robot does)
-        if w.human_holding() == obj and w.robot_holding() == obj:
-            w.set_hand_posture("open")
-        human.tick(t)
-
     prim = P.Receive(robot, "held_out", human_holds=lambda: w.human_holding() is not None)
-    pr, s = run(w, prim, lambda: tuple(w.data.site_xpos[hand][:2]), each_tick=tick)
+    pr, s = run(w, prim, lambda: tuple(w.data.site_xpos[hand][:2]), each_tick=human.tick)
     assert pr.status is Status.SUCCEEDED, pr.reason
     settle(w, 0.5, human)
     st = w.state()
     assert st.objects[obj].zone == "RWS" and upright(w, obj), st.summary()
     assert st.human_holds is None and st.robot_holds is None
+    assert human.done[-1].status == "success", human.done[-1].reason
     assert_safe(s)
 
 
