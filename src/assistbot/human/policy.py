@@ -69,8 +69,10 @@ def follow_up(c, done) -> list[tuple[str, dict]]:
 def still_relevant(c, name: str, args: dict) -> bool:
     """A response that waited while the hand was busy: does what it answers still hold?"""
     if name == "take_from_robot":
-        # the robot still has the object in hand (and the human's hand is free to take it)
-        return c.view.holds is not None and args.get("object") in (None, c.view.holds) and c.world.human_holding() is None
+        # the hand is free to take it; the robot may still be fetching the object it announced
+        # (take_from_robot itself waits for the offer), but not be holding out something else
+        offered = c.view.offers
+        return c.world.human_holding() is None and (offered is None or args.get("object") in (None, offered))
     if name == "pull_stopper":
         return bool(c.world.data.eq_active[c.world.eq_stopper])
     return True
