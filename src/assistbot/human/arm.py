@@ -25,6 +25,7 @@ import math
 import mujoco
 import numpy as np
 
+from assistbot.human.dls import bounded, dls_step, pose_at
 from assistbot.human.ikmodel import arm_model
 from assistbot.world import HAND_POSTURES, HUMAN_ARM_JOINTS, HUMAN_HAND_JOINTS
 
@@ -144,9 +145,7 @@ class Segment:
         self._K, self._K2 = K @ self.R0, (K @ K) @ self.R0
 
     def at(self, t: float) -> tuple[np.ndarray, np.ndarray]:
-        s = min_jerk((t - self.t0) / self.duration)
-        a = s * self._angle
-        return self.p0 + s * self._dp, self.R0 + math.sin(a) * self._K + (1.0 - math.cos(a)) * self._K2
+        return pose_at(min_jerk((t - self.t0) / self.duration), self.p0, self._dp, self.R0, self._K, self._K2, self._angle)
 
     def done(self, t: float) -> bool:
         return t >= self.t0 + self.duration
@@ -177,11 +176,6 @@ class HumanArm:
         self._hi = self.m.jnt_range[:, 1].copy()
         self._jacp = np.zeros((3, self.m.nv))
         self._jacr = np.zeros((3, self.m.nv))
-        self._J = np.zeros((6, self.m.nv))
-        self._A = np.zeros((6, 6))
-        self._e = np.zeros(6)
-        self._y = np.zeros(6)
-        self._diag = np.diag_indices(6)
         self.clamped: list[tuple[float, tuple[float, float, float], tuple[float, float, float]]] = []
         self.posture = "open"
         self.reset()
@@ -279,26 +273,14 @@ class HumanArm:
         q = self.q
         max_step = MAX_JOINT_SPEED * self.dt
         m, d = self.m, self.d
-        J, A, e, y = self._J, self._A, self._e, self._y
         for _ in range(iterations):
             d.qpos[:] = q
             mujoco.mj_kinematics(m, d)
             mujoco.mj_comPos(m, d)
             mujoco.mj_jacSite(m, d, self._jacp, self._jacr, self._site)
-            p, R = d.site_xpos[self._site], d.site_xmat[self._site].reshape(3, 3)
-            e[:3] = p_t - p
-            e[3:] = 0.4 * _log_rot(R_t @ R.T)
-            J[:3] = self._jacp
-            J[3:] = 0.4 * self._jacr
-            # damped least squares with a weak pull r toward the rest posture in the null space:
-            # dq = J'(JJ' + l I)^-1 e + (I - J'(JJ' + l I)^-1 J) r = r + J'(JJ' + l I)^-1 (e - J r)
-            np.matmul(J, J.T, out=A)
-            A[self._diag] += 4e-4
-            r = 0.02 * (self.q_rest - q)
-            mujoco.mju_cholFactor(A, 0.0)
-            mujoco.mju_cholSolve(y, A, e - J @ r)
-            q = np.minimum(np.maximum(q + r + J.T @ y, self._lo), self._hi)
-        step = np.minimum(np.maximum(q - self.q, -max_step), max_step)
-        self.q = np.minimum(np.maximum(self.q + step, self._lo), self._hi)
-        self._settled = not moving and float(np.abs(step).max()) < SETTLED_STEP
+            # damped least squares with a weak pull toward the rest posture in the null space (dls.py)
+            q = dls_step(p_t, R_t, d.site_xpos[self._site], d.site_xmat[self._site].reshape(3, 3),
+                         self._jacp, self._jacr, q, self.q_rest, self._lo, self._hi)
+        self.q, biggest = bounded(q, self.q, self._lo, self._hi, max_step)
+        self._settled = not moving and biggest < SETTLED_STEP
         self.world.data.ctrl[self._act] = self.q
