@@ -57,3 +57,21 @@ def test_middle_line_limit_clamps_and_logs():
         t += arm.dt
         xmax = max(xmax, float(np.max(world.data.geom_xpos[hand_geoms, 0])), float(arm.hand_pose()[0][0]))
     assert xmax <= HANDOVER_X_MAX
+
+
+def test_compiled_ik_step_agrees_with_the_numpy_reference():
+    from assistbot.human.arm import _exp_rot
+    from assistbot.human.dls import bounded, dls_step, dls_step_numpy
+
+    rng = np.random.default_rng(0)
+    lo, hi = -2 * np.ones(7), 2 * np.ones(7)
+    for trial in range(100):
+        R = _exp_rot(rng.normal(size=3))
+        R_t = _exp_rot(rng.normal(size=3) * (3.0 if trial % 3 == 0 else 0.3)) @ R   # large and small errors
+        args = (rng.normal(size=3), R_t, rng.normal(size=3), R, rng.normal(size=(3, 7)), rng.normal(size=(3, 7)),
+                rng.normal(size=7), rng.normal(size=7), lo, hi)
+        q = dls_step(*args)
+        assert np.allclose(q, dls_step_numpy(*args), atol=1e-9)
+        q_cmd = rng.normal(size=7)
+        out, big = bounded(q, q_cmd, lo, hi, 0.024)
+        assert np.all(np.abs(out - q_cmd) <= 0.024 + 1e-12) and big == pytest.approx(np.abs(out - q_cmd).max())
