@@ -72,6 +72,6 @@ def test_compiled_ik_step_agrees_with_the_numpy_reference():
                 rng.normal(size=7), rng.normal(size=7), lo, hi)
         q = dls_step(*args)
         assert np.allclose(q, dls_step_numpy(*args), atol=1e-9)
-        q_cmd = rng.normal(size=7)
+        q_cmd = rng.uniform(-1.9, 1.9, size=7)          # a command within the joint limits
         out, big = bounded(q, q_cmd, lo, hi, 0.024)
         assert np.all(np.abs(out - q_cmd) <= 0.024 + 1e-12) and big == pytest.approx(np.abs(out - q_cmd).max())
