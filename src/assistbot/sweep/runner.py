@@ -85,7 +85,6 @@ def run_sweep(spec: SweepSpec, out: str | Path, executor=None, progress: bool = 
     done = store.open()
     try:
         write_spec(spec, out, jobs)
-        ids = {j.id for j in jobs}
         pending = [j for j in jobs if j.id not in done]
         outcome = SweepOutcome(out=out, total=len(jobs), skipped=len(jobs) - len(pending))
         stale = sorted({j.scenario for j in jobs if j.id in done and done[j.id].get("scenario_sha") not in ("", j.scenario_sha)})
