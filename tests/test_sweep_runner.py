@@ -115,3 +115,14 @@ def test_report_on_fake_results(spec, tmp_path):
     assert "6/12 drank" in md  # k = 1.2 drinks
     assert "| 1.2 | 6 | 6 | 1.00 |" in md and "| 0.8 | 6 | 0 | 0.00 |" in md
     assert "time to drink 10.0 s [" in md  # seeds 0, 1, 2 -> 0, 10, 20 s
+
+
+def test_report_counts_the_expected_decision_sequence(spec, tmp_path):
+    from assistbot.sweep import write_report
+
+    out = tmp_path / "out"
+    run_sweep(spec, out, executor=FakeExecutor(), progress=False, log=lambda m: None)
+    md = write_report(out, expect="A > B")[0].read_text()
+    assert "## Expected decision sequence" in md and "| 0.8 | 6 | 6 | 1.00 |" in md
+    md = write_report(out, expect="A")[0].read_text()
+    assert "| 0.8 | 6 | 0 | 0.00 |" in md.split("## Expected decision sequence")[1]

@@ -13,12 +13,14 @@ ORDER = 35
 def add_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument("dir", type=Path, metavar="DIR", help="a sweep's results folder (holding results.csv)")
     p.add_argument("--out", type=Path, default=None, help="where to write the report (default: DIR/report)")
+    p.add_argument("--expect", default=None, metavar="'A > B > ...'",
+                   help="an AEL decision sequence: count per parameter value the episodes that made exactly it")
 
 
 def run(args: argparse.Namespace) -> int:
     from assistbot.sweep.report import write_report
 
-    paths = write_report(args.dir, args.out)
+    paths = write_report(args.dir, args.out, expect=args.expect)
     print(f"report: {paths[0]}")
     for p in paths[1:]:
         print(f"  {p}")

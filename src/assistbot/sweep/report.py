@@ -183,8 +183,36 @@ def _plot_heatmap(rows: list[dict], p1: str, p2: str, path: Path) -> None:
     plt.close(fig)
 
 
-def write_report(results_dir: str | Path, out: str | Path | None = None) -> list[Path]:
-    """Write report.md, summary.csv and the plots; return the written paths (report.md first)."""
+def _sequence(text: str | None) -> list[str]:
+    return [a.strip() for a in (text or "").split(">") if a.strip()]
+
+
+def _expect_section(rows: list[dict], factors: list[str], expect: str) -> list[str]:
+    """Per value of each factor: how many episodes made exactly the expected AEL decision sequence."""
+    from assistbot.sweep.stats import wilson
+
+    want = _sequence(expect)
+    md = ["## Expected decision sequence", "", f"Expected: `{' > '.join(want)}` (the whole AEL sequence, in order).", ""]
+    for factor in factors or ["scenario"]:
+        md += [f"| {factor} | n | made it | rate | 95% CI (Wilson) |", "|---|---:|---:|---:|---|"]
+        groups: dict[Any, list[dict]] = defaultdict(list)
+        for r in rows:
+            groups[_key(r.get(factor))].append(r)
+        for v in _ordered([r.get(factor) for r in rows]):
+            grp = groups[v]
+            k = sum(1 for r in grp if _sequence(r.get("decisions")) == want)
+            lo, hi = wilson(k, len(grp))
+            md.append(f"| {_fmt_value(v)} | {len(grp)} | {k} | {_f(k / len(grp))} | {_ci(lo, hi)} |")
+        md.append("")
+    return md
+
+
+def write_report(results_dir: str | Path, out: str | Path | None = None, expect: str | None = None) -> list[Path]:
+    """Write report.md, summary.csv and the plots; return the written paths (report.md first).
+
+    ``expect``: an AEL decision sequence ("A > B > C"); the report then counts, per parameter value,
+    the episodes that made exactly that sequence (e.g. the seed's, to see which k still reproduces it).
+    """
     results_dir = Path(results_dir)
     params, rows = load_results(results_dir)
     out_dir = Path(out) if out is not None else (results_dir.parent if results_dir.suffix == ".csv" else results_dir) / "report"
@@ -227,6 +255,8 @@ def write_report(results_dir: str | Path, out: str | Path | None = None) -> list
         _plot_heatmap(rows, p1, p2, png)
         written.append(png)
         md += [f"![success over {p1} x {p2}]({png.name})", ""]
+    if expect:
+        md += _expect_section(rows, factors, expect)
     seqs = Counter(r.get("decisions") or "(none)" for r in rows)
     md += ["## Decision sequences (AEL)", "", "| sequence | episodes | drank |", "|---|---:|---:|"]
     for seq, n in seqs.most_common(10):
