@@ -34,7 +34,7 @@ def run_scenario(spec: str | Path | Scenario, out: str | Path | None = None, per
     if progress:
         from tqdm import tqdm
 
-        bar = tqdm(total=round(scenario.time_limit, 1), unit="sim s", desc=scenario.name, leave=True,
+        bar = tqdm(total=round(scenario.time_limit, 1), unit="sim s", desc=scenario.name, leave=True, mininterval=1.0,
                    bar_format="{desc}: {percentage:3.0f}%|{bar}| {n:.1f}/{total:.0f} sim s [{elapsed}<{remaining}]")
 
         def tick(t: float) -> None:
