@@ -251,12 +251,16 @@ def test_receive_takes_the_object_from_the_human_hand_and_puts_it_in_rws(obj, ar
 
 
 # --------------------------------------------------------------------------- request, retract, failures
-@pytest.mark.parametrize("target", [(-0.22, 0.12), (-0.20, -0.25)])
-def test_request_holds_open_hand_near_middle_line(target):
+@pytest.mark.parametrize("target, arrangement", [((-0.20, -0.25), ("HWS:closed", "HWS:empty@-0.20,-0.25")),
+                                                 ((-0.22, 0.12), ("RWS:closed@0.20,0.12", "HWS:empty"))])
+def test_request_holds_open_hand_near_middle_line(target, arrangement):
+    """Also with the bottle standing in the RWS on the glass's side: the hand moves aside so that the
+    forearm, which comes up from below to a palm-up hand, does not hit it."""
     from assistbot.human.perception import see_robot
 
-    w, robot = make("HWS:closed", "HWS:empty")
-    pr, s = run(w, P.Request(robot, "glass"), lambda: target, seconds=10.0)
+    w, robot = make(*arrangement)
+    prim = P.Request(robot, "glass", locate=lambda name: body_xy(w, name)())
+    pr, s = run(w, prim, lambda: target, seconds=10.0)
     assert pr.status is Status.SUCCEEDED, pr.reason
     palm = w.data.site_xpos[w.model.site("robot_palm_face").id]
     assert abs(palm[0]) < 0.15

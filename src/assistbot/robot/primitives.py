@@ -565,20 +565,39 @@ class Request(Primitive):
 
     The palm faces up and toward the human (its normal 60 deg above the horizontal): a fully
     upturned palm puts the wrist pitch at its limit on the robot's far (-y) side. The hand
-    goes toward the object's side within y in Y_RANGE (the shoulder is on the +y side)."""
+    goes toward the object's side within y in Y_RANGE (the shoulder is on the +y side), moved
+    aside from objects that ``locate`` reports standing in the RWS (the forearm would hit them)."""
 
     name = "request"
     HEIGHT = 0.20  # above the table
     PALM_UP = math.radians(60)
     Y_RANGE = (-0.12, 0.30)
 
+    #: an object standing in the RWS closer than this (m, in y) to the hand's line would meet the forearm,
+    #: which comes up from below to a palm-up hand
+    CLEAR_Y = 0.11
+
+    def _y(self) -> float:
+        """The hand's y: toward the target's side, moved aside from objects seen standing in the RWS."""
+        y = float(np.clip(self.xy()[1], *self.Y_RANGE))
+        obstacles = [xy[1] for xy in (self.locate(n) for n in ("bottle", "glass")) if xy is not None and xy[0] > 0.0]
+        if not obstacles or all(abs(y - o) >= self.CLEAR_Y for o in obstacles):
+            return y
+        lo, hi = self.Y_RANGE
+        candidates = np.linspace(lo, hi, 43)
+        free = [c for c in candidates if all(abs(c - o) >= self.CLEAR_Y for o in obstacles)]
+        return float(min(free, key=lambda c: abs(c - y))) if free else y
+
     def phases(self):
         def goal(p):
-            y = float(np.clip(p.xy()[1], *self.Y_RANGE))
+            if getattr(p, "_request_y", None) is None:
+                p._request_y = p._y()
+            y = p._request_y
             pos = np.array([0.06, y, TABLE_Z + self.HEIGHT])
             # palm up: the palm normal (gripper -x) turned from horizontal toward world +z
             rot = poses.side_rotation(pos, p.robot.shoulder) @ mink.SO3.from_y_radians(self.PALM_UP)
             return poses.pose(rot, pos)
+        self._request_y = None
         return [_Open("open"), Move("hold out open hand", goal, duration=2.0, tolerance=0.03)]
 
 
