@@ -15,7 +15,18 @@ Composite actions are one primitive whose phases chain the parts:
                                       human lets go, put it down in the RWS
 
 The caller constructs ``cls(robot, obj, human_holds=..., locate=..., stopper_removed=...)``
-(see `primitives.Primitive`); every primitive accepts all three callbacks.
+(see `primitives.Primitive`); every primitive accepts all three callbacks. From perception,
+e.g. in the episode's executor (``p`` the latest Percept, ``prim`` the running primitive):
+
+    human_holds     = lambda: p.hand.seen and p.hand.object_in_hand is not None and
+                              (obj == "held_out" or p.hand.object_in_hand == prim.object)
+    locate          = lambda name: (p.objects[name].position[:2] if p.objects[name].seen else None)
+    stopper_removed = lambda: p.objects["bottle"].seen and p.objects["bottle"].state == "open"
+
+Without ``locate`` Pour fails at once ("the glass is not seen") and Request does not step
+aside from objects in the RWS; without ``stopper_removed`` HoldBottleForStopper fails after
+its 30 s timeout; for Receive-object, ``human_holds`` must be true while the human's hand
+holds whatever it holds out (the robot waits for it to let go).
 """
 
 from __future__ import annotations
