@@ -330,3 +330,18 @@ def test_active_wrong_grip_then_corrected_after_the_robots_error():
     starts = [(e.what, e.detail.get("grip")) for e in hc.events("start")]
     assert starts[:3] == [("grasp", "sg"), ("put_down", None), ("hand_to_robot", "ag")]
     assert s.holds() == "bottle" and w.state().human_holds is None
+
+
+def test_drink_does_not_count_with_a_glass_that_is_not_full():
+    """A few particles in the glass (the rest spilled on the table): drinking them is no drink."""
+    w, s, hc = _setup(_arr({"zone": "RWS", "state": "open"}, {"zone": "HWS", "state": "full"}))
+    qa = w.particle_qadr[: layout.N_PARTICLES // 2]
+    for i, a in enumerate(qa):                                # half the liquid on the table, out of the glass
+        w.data.qpos[a:a + 3] = (-0.05 - 0.013 * (i % 10), -0.30 - 0.013 * (i // 10), layout.TABLE_Z + layout.PARTICLE_RADIUS)
+    w.step(1)
+    st = w.state()
+    assert st.glass_state == "empty" and 0 < st.liquid.in_glass < 0.6 * layout.N_PARTICLES
+    hc.start("drink")
+    ends = _run_until_done(hc, s, 25.0)
+    assert ends[-1].what == "drink" and ends[-1].kind == "failure" and "not full" in ends[-1].detail["reason"]
+    assert w.state().liquid.drunk > 0                         # the particles did reach the mouth: not counted as a drink

@@ -337,8 +337,8 @@ def turn_glass(c) -> Gen:
 
 
 def drink(c, timeout: float = 6.0, put_back: bool = True) -> Gen:
-    """Bring the glass (grasped if needed) to the mouth and tilt it; counts when >= 75% of its liquid
-    reaches the mouth.  Then (put_back) the glass goes back upright where it was taken from, if that
+    """Bring the glass (grasped if needed) to the mouth and tilt it; counts when the glass was full
+    (WorldState) and >= 75% of its liquid reached the mouth.  Then (put_back) the glass goes back upright where it was taken from, if that
     was in the HWS, else near the body."""
     w = c.world
     base_xy = _center_base(c, "glass")[:2].copy()
@@ -350,6 +350,7 @@ def drink(c, timeout: float = 6.0, put_back: bool = True) -> Gen:
             return False, why
     st = w.state()
     n0 = st.liquid.in_glass
+    full = st.glass_state == "full"          # WorldState: at least FULL_FRACTION of the liquid in the glass
     drunk0 = int(w.drunk.sum())
     mouth = w.data.site_xpos[w.site_id["human_mouth"]].copy()
     # The pouring lip: the point of the rim on the side toward the face.  The glass tilts
@@ -394,6 +395,8 @@ def drink(c, timeout: float = 6.0, put_back: bool = True) -> Gen:
         yield from put_down(c, "glass", at=tuple(base_xy))
     if n0 == 0:
         return False, "the glass was empty: nothing to drink"
+    if not full:
+        return False, f"the glass was not full: drank {drunk} of {n0} particles"
     return bool(got), f"drank {drunk} of {n0} particles"
 
 
