@@ -36,6 +36,11 @@ from assistbot.world import layout
 
 MIN_EXTENT = 0.82
 MIN_EXTENT_HELD = 0.55
+MAX_EXTENT = 1.3           # more than this: merged with something of the same colour
+MAX_TILT = 0.6             # rad in the image: a strongly tilted object (pouring) cannot be placed
+HELD_DIST = 0.16           # m: a lifted object this close to the hand is held by it
+#: height of the silhouette's centroid above the base (m) of a lifted, upright object
+CENTROID_Z = {"bottle": 0.085, "glass": 0.05}
 #: object heights (m) for the expected silhouettes
 HEIGHT = {"bottle": 0.194, "glass": 0.10}   # the bottle without its (red) stopper
 CROP = {"glass": (16, 20), "hand": (24, 24)}   # template sizes (w, h)
@@ -59,6 +64,8 @@ class ObjectDetection:
     occluded_top: float = 0.0           # share of the band above the object's top that is skin (max over cameras)
     stopper: tuple[float, float] = (0.0, 0.0)   # red pixels touching the bottle / expected stopper area, per camera
     top: np.ndarray | None = None       # triangulated top-centre point (m)
+    on_table: bool = False
+    inside: bool = False                # off the image borders in both cameras
 
 
 @dataclass
@@ -148,8 +155,10 @@ class _Roi:
             ev, evec = np.linalg.eigh(cov)
             v = evec[:, 1]
             self.tilt = float(np.arccos(min(1.0, abs(v[1])))) if ev[1] > 1.5 * ev[0] else 0.0
+            self.centroid = np.array([xs.mean() + self.x0 + 0.5, ys.mean() + self.y0 + 0.5])
         else:
             self.tilt = 0.0
+            self.centroid = np.array([self.x0 + xs.mean() + 0.5, self.y0 + ys.mean() + 0.5])
         self.area = float(m.sum())
 
 
@@ -174,7 +183,18 @@ class Detector:
         for name in ("bottle", "glass"):
             det.objects[name] = self._object(name, blobs, imgs, cams)
         det.hand = self._hand(blobs, lab, imgs, cams, det)
+        for o in det.objects.values():
+            self._held(o, det.hand)
         return det
+
+    @staticmethod
+    def _held(o: ObjectDetection, hand: HandDetection) -> None:
+        """A lifted object is seen only in the hand (else: a hidden bottom edge, a bad match)."""
+        if o.visible or o.on_table or o.position is None or not o.inside or not hand.visible:
+            return
+        centre = o.position + [0, 0, CENTROID_Z[o.name]]
+        o.visible = bool(np.linalg.norm(hand.position - centre) < HELD_DIST and MIN_EXTENT_HELD <= o.extent <= MAX_EXTENT
+                         and o.tilt < MAX_TILT and o.position[2] > 0.02)
 
     # ------------------------------------------------------------------ objects
     def _object(self, name, blobs, imgs, cams) -> ObjectDetection:
@@ -205,10 +225,11 @@ class Detector:
                 P[:2] += r_obj * hdir / np.linalg.norm(hdir)
                 pts.append(P)
             pos = np.mean(pts, axis=0)
-        else:
-            pos = Xb.copy()
-            hdir = Xb[:2] - 0.5 * (cams[0].C[:2] + cams[1].C[:2])
-            pos[:2] += r_obj * hdir / np.linalg.norm(hdir)
+        else:   # lifted: the silhouette's triangulated centroid, less the centroid's height
+            pos = triangulate(cams[0], cams[1], rois[0].centroid, rois[1].centroid)[0]
+            hdir = pos[:2] - 0.5 * (cams[0].C[:2] + cams[1].C[:2])
+            pos[:2] += 0.5 * r_obj * hdir / np.linalg.norm(hdir)
+            pos[2] -= CENTROID_Z[name]
         extent = 9.0
         H, W = imgs[0].shape[:2]
         inside = True
@@ -218,9 +239,10 @@ class Detector:
             x, y, w, h = bb.bbox
             inside &= x > 1 and y > 1 and x + w < W - 1 and y + h < H - 1
         tilt = max(roi.tilt for roi in rois)
-        held = not on_table or tilt > 0.35
-        visible = bool(inside and extent >= (MIN_EXTENT_HELD if held else MIN_EXTENT))
+        # standing on the table and whole; a lifted one is decided once the hand is known (`_held`)
+        visible = bool(inside and on_table and MIN_EXTENT <= extent <= MAX_EXTENT and tilt < MAX_TILT)
         det = ObjectDetection(name, visible, pos, (a, b), extent=float(extent), tilt=float(tilt), top=Xt)
+        det.on_table, det.inside = on_table, inside
         self._object_features(det, rois, cams, pos)
         return det
 
@@ -274,7 +296,7 @@ class Detector:
         if best is None:
             return HandDetection(False)
         a, b, X = best
-        ends, roots = [], []
+        ends, roots, spread = [], [], []
         for L, bb, cc in ((lab[0], a, cl), (lab[1], b, cr)):
             x, y, w, h = (v // 2 for v in bb.bbox)
             x0, y0, x1, y1 = max(0, x - 2), max(0, y - 2), min(L.shape[1], x + w + 2), min(L.shape[0], y + h + 2)
@@ -293,6 +315,11 @@ class Detector:
             far = P[dist >= np.percentile(dist, 75)]
             ends.append(far.mean(axis=0))
             roots.append(root)
+            if not spread:   # the hand's own outline (left camera): spread along and across the arm, in px
+                ax = far.mean(axis=0) - root
+                ax = ax / max(1e-6, float(np.linalg.norm(ax)))
+                q = far - far.mean(axis=0)
+                spread = [float(np.std(q @ ax)), float(np.std(q @ np.array([-ax[1], ax[0]]))), float(len(far))]
         Xd = triangulate(cams[0], cams[1], ends[0], ends[1])[0]
         Xr = triangulate(cams[0], cams[1], roots[0], roots[1])[0]
         depth = float(np.linalg.norm(Xd - cams[0].C))
@@ -301,23 +328,25 @@ class Detector:
         skin_full = self.table.labels(imgs[0][max(0, v - half):v + half, max(0, u - half):u + half]) == _K
         crop = _crop(skin_full.astype(np.float32), 0, 0, skin_full.shape[1], skin_full.shape[0], CROP["hand"]) \
             if skin_full.size else np.zeros(CROP["hand"][::-1], np.float32)
-        area = a.area * (depth / cams[0].K[0, 0]) ** 2 * 1e4       # cm^2 of skin in view
-        geo = self._hand_geo(Xd, Xr, det, area)
+        px = depth / cams[0].K[0, 0]                                # m per pixel at the hand
+        area = a.area * px ** 2 * 1e4                               # cm^2 of skin in view
+        shape = [spread[0] * px * 100, spread[1] * px * 100, spread[2] * px * px * 1e4]   # cm, cm, cm^2
+        geo = self._hand_geo(Xd, Xr, det, area, shape)
         return HandDetection(True, Xd, Xr, a, crop, geo, np.asarray(ends[0]))
 
     @staticmethod
-    def _hand_geo(Xd: np.ndarray, Xr: np.ndarray, det: Detections, area: float) -> np.ndarray:
-        """Hand geometry: position, arm direction, skin area, and the nearest object relative to it."""
+    def _hand_geo(Xd: np.ndarray, Xr: np.ndarray, det: Detections, area: float, shape) -> np.ndarray:
+        """Hand features: position, arm root and direction, skin area and outline spread, and per object
+        (bottle, glass) the horizontal distance, the height over its (upright) top, its base height
+        and tilt, and the bottle's stopper in view."""
         d = Xd - Xr
         d = d / max(1e-6, float(np.linalg.norm(d)))
-        near = (0.5, 0.0, 0.0, 0.0, 0.0)
-        best = 0.5
-        for o in det.objects.values():
+        rel = []
+        for o in (det.objects["bottle"], det.objects["glass"]):
             if o.position is None:
+                rel += [0.5, 0.0, 0.0, 0.0]
                 continue
-            top = o.top if o.top is not None else o.position
-            dxy = float(np.linalg.norm(Xd[:2] - o.position[:2]))
-            if dxy < best:
-                best = dxy
-                near = (dxy, float(Xd[2] - top[2]), float(o.position[2]), float(o.tilt), 1.0 if o.name == "bottle" else -1.0)
-        return np.array([Xd[0], Xd[1], Xd[2], d[0], d[1], d[2], area, *near], np.float32)
+            rel += [float(np.linalg.norm(Xd[:2] - o.position[:2])), float(Xd[2] - o.position[2] - HEIGHT[o.name]),
+                    float(o.position[2]), float(o.tilt)]
+        red = float(max(det.objects["bottle"].stopper))
+        return np.array([*Xd, *d, *Xr, area, *shape, *rel, red], np.float32)

@@ -74,6 +74,7 @@ class Classifier:
     mean: np.ndarray
     std: np.ndarray
     weights: np.ndarray
+    mlp: dict[str, np.ndarray] | None = None     # W1, b1, W2, b2: a one-hidden-layer network instead of k-NN
 
     def features(self, crop: np.ndarray | None, extra: np.ndarray) -> np.ndarray:
         return np.concatenate([template_scores(crop, self.protos), np.asarray(extra, np.float32)])
@@ -82,6 +83,13 @@ class Classifier:
         """(class, confidence in [0, 1], class template scores)."""
         f = self.features(crop, extra)
         z = (f - self.mean) / self.std * self.weights
+        if self.mlp is not None:
+            m = self.mlp
+            logit = np.tanh(z @ m["W1"] + m["b1"]) @ m["W2"] + m["b2"]
+            pr = np.exp(logit - logit.max())
+            pr /= pr.sum()
+            c = int(np.argmax(pr))
+            return self.classes[c], float(pr[c]), f[:len(f) - len(extra)]
         d = np.sum((self.X - z) ** 2, axis=1)
         idx = np.argpartition(d, min(K_NEIGHBOURS, len(d) - 1))[:K_NEIGHBOURS]
         w = 1.0 / (np.sqrt(d[idx]) + 1e-3)
@@ -109,7 +117,40 @@ def build_classifier(kind: str, crops: list[np.ndarray | None], extras: list[np.
     w = np.ones(F.shape[1], np.float32)
     if weights is not None:
         w[len(w) - len(weights):] = weights      # weights of the shape features (template scores weigh 1)
-    return Classifier(kind, classes, protos_f, (F - mean) / std * w, y, mean, std, w)
+    Z = (F - mean) / std * w
+    mlp = train_mlp(Z, y, len(classes), seed) if kind in MLP_KINDS else None
+    if mlp is not None:
+        Z = Z[:0]                  # the network replaces the examples (their labels stay, for the counts)
+    return Classifier(kind, classes, protos_f, Z, y, mean, std, w, mlp)
+
+
+MLP_KINDS = ("hand",)
+MLP_HIDDEN, MLP_EPOCHS, MLP_RATE, MLP_DECAY = 64, 3000, 0.5, 3e-3
+
+
+def train_mlp(Z: np.ndarray, y: np.ndarray, n_classes: int, seed: int = 0) -> dict[str, np.ndarray]:
+    """A tanh network with one hidden layer, softmax output, full-batch gradient descent with weight
+    decay (deterministic for a seed); weights rounded as they are stored."""
+    rng = np.random.default_rng(seed)
+    Z = Z.astype(np.float64)
+    W1 = rng.normal(0, 1 / np.sqrt(Z.shape[1]), (Z.shape[1], MLP_HIDDEN))
+    b1 = np.zeros(MLP_HIDDEN)
+    W2 = rng.normal(0, 1 / np.sqrt(MLP_HIDDEN), (MLP_HIDDEN, n_classes))
+    b2 = np.zeros(n_classes)
+    Y = np.eye(n_classes)[y]
+    for _ in range(MLP_EPOCHS):
+        h = np.tanh(Z @ W1 + b1)
+        z = h @ W2 + b2
+        z -= z.max(1, keepdims=True)
+        p = np.exp(z)
+        p /= p.sum(1, keepdims=True)
+        g = (p - Y) / len(Z)
+        gh = g @ W2.T * (1 - h ** 2)
+        W2 -= MLP_RATE * (h.T @ g + MLP_DECAY * W2)
+        b2 -= MLP_RATE * g.sum(0)
+        W1 -= MLP_RATE * (Z.T @ gh + MLP_DECAY * W1)
+        b1 -= MLP_RATE * gh.sum(0)
+    return {k: np.round(v, 5).astype(np.float32) for k, v in (("W1", W1), ("b1", b1), ("W2", W2), ("b2", b2))}
 
 
 def _to_u8(a: np.ndarray) -> np.ndarray:
@@ -124,6 +165,8 @@ def save(root: Path, classifiers: dict[str, Classifier], calibration: dict, meta
     for kind, clf in classifiers.items():
         entry = {"classes": list(clf.classes), "prototypes": {}, "mean": _r(clf.mean), "std": _r(clf.std),
                  "weights": _r(clf.weights), "examples": {"X": [_r(x) for x in clf.X], "y": clf.y.tolist()}}
+        if clf.mlp is not None:
+            entry["mlp"] = {k: [_r(row) for row in np.atleast_2d(v)] for k, v in clf.mlp.items()}
         for c, plist in zip(clf.classes, clf.protos):
             names = []
             for j, p in enumerate(plist):
@@ -161,6 +204,10 @@ def load(root: Path | None = None) -> tuple[dict[str, Classifier], dict]:
         protos = [[cv2.imread(str(root / n), cv2.IMREAD_GRAYSCALE).astype(np.float32) / 255.0 for n in e["prototypes"].get(c, [])]
                   for c in e["classes"]]
         X = np.array(e["examples"]["X"], np.float32)
-        out[kind] = Classifier(kind, tuple(e["classes"]), protos, X, np.array(e["examples"]["y"]),
-                               np.array(e["mean"], np.float32), np.array(e["std"], np.float32), np.array(e["weights"], np.float32))
+        mlp = None
+        if "mlp" in e:
+            mlp = {k: np.array(v, np.float32) for k, v in e["mlp"].items()}
+            mlp["b1"], mlp["b2"] = mlp["b1"].ravel(), mlp["b2"].ravel()
+        out[kind] = Classifier(kind, tuple(e["classes"]), protos, X, np.array(e["examples"]["y"], int),
+                               np.array(e["mean"], np.float32), np.array(e["std"], np.float32), np.array(e["weights"], np.float32), mlp)
     return out, load_calibration(root)

@@ -51,8 +51,10 @@ class Timing:
 class Vision:
     """Segmentation + template matching + triangulation -> Percept (see module docstring)."""
 
-    def __init__(self, root=None) -> None:
-        self.classifiers, self.calibration = library.load(root)
+    def __init__(self, root=None, library_data: tuple[dict, dict] | None = None) -> None:
+        """root: the template library folder (default assets/templates); library_data: (classifiers,
+        calibration) in memory instead (experiments)."""
+        self.classifiers, self.calibration = library_data or library.load(root)
         self.hand_offset = {k: np.asarray(v, float) for k, v in self.calibration.get("hand_offset", {}).items()}
         self.detector = Detector(self.calibration)
         self.last: Detections | None = None
@@ -191,7 +193,7 @@ class Vision:
 
 
 # ---------------------------------------------------------------------------- building the library
-def build_library(seed: int = 0, n_scenes: int = 540, root=None, progress=None) -> list:
+def build_library(seed: int = 0, n_scenes: int = 1620, root=None, progress=None) -> list:
     """Calibrate, render library scenes, and write prototypes + examples to assets/templates/."""
     from assistbot.vision.calibration import calibrate
     from assistbot.vision.capture import StereoCapture
@@ -199,34 +201,47 @@ def build_library(seed: int = 0, n_scenes: int = 540, root=None, progress=None) 
     from assistbot.world import PAPER_ARRANGEMENTS, build_world
 
     cal = calibrate(seed)
-    det = Detector(cal)
     world = build_world(PAPER_ARRANGEMENTS["fig3"], seed)
     sampler = SceneSampler(seed, "library")
+
+    def frames():
+        with StereoCapture(world.model) as cap:
+            for i in range(n_scenes):
+                lab = pose(world, sampler.sample(POSTURES[i % len(POSTURES)]))
+                yield cap.grab(world.data), lab
+                if progress:
+                    progress(i + 1, n_scenes)
+
+    clfs, cal = fit_library(cal, frames(), seed)
+    meta = {"seed": seed, "scenes": n_scenes, "examples": {k: len(c.y) for k, c in clfs.items()}}
+    return library.save(root or library.ROOT, clfs, cal, meta)
+
+
+#: feature weights (after the template scores) per kind: the stopper and liquid features decide the states
+WEIGHTS = {"bottle": [3, 1, 1, 0.5, 0.5], "glass": [3, 1, 2, 0.5, 0.5],
+           "hand": None}
+
+
+def fit_library(cal: dict, frames, seed: int = 0) -> tuple[dict, dict]:
+    """Classifiers (and the calibration with the hand offsets) from labelled (StereoFrame, Labels) pairs."""
+    det = Detector(cal)
     data = {k: ([], [], []) for k in library.KINDS}
     offsets: dict[str, list[np.ndarray]] = {}
-    with StereoCapture(world.model) as cap:
-        for i in range(n_scenes):
-            lab = pose(world, sampler.sample(POSTURES[i % len(POSTURES)]))
-            f = cap.grab(world.data)
-            d = det(f.left, f.right, f.cams)
-            for name in ("bottle", "glass"):
-                o = d.objects[name]
-                if o.visible:
-                    data[name][0].append(o.crop)
-                    data[name][1].append(o.feat)
-                    data[name][2].append(lab.objects[name]["state"])
-            if d.hand.visible:
-                data["hand"][0].append(d.hand.crop)
-                data["hand"][1].append(d.hand.geo)
-                data["hand"][2].append(lab.posture)
-                offsets.setdefault(lab.posture, []).append(np.array(lab.hand_position) - d.hand.position)
-            if progress:
-                progress(i + 1, n_scenes)
-    # feature weights (after the template scores): the stopper and liquid features decide the states
-    weights = {"bottle": [3, 1, 1, 0.5, 0.5], "glass": [3, 1, 2, 0.5, 0.5],
-               "hand": [1.5, 1.5, 2, 1, 1, 1, 1, 2, 2, 1.5, 1, 1]}
-    clfs = {k: library.build_classifier(k, *v, seed=seed, weights=weights[k]) for k, v in data.items()}
+    for f, lab in frames:
+        d = det(f.left, f.right, f.cams)
+        for name in ("bottle", "glass"):
+            o = d.objects[name]
+            if o.visible:
+                data[name][0].append(o.crop)
+                data[name][1].append(o.feat)
+                data[name][2].append(lab.objects[name]["state"])
+        if d.hand.visible:
+            data["hand"][0].append(d.hand.crop)
+            data["hand"][1].append(d.hand.geo)
+            data["hand"][2].append(lab.posture)
+            offsets.setdefault(lab.posture, []).append(np.array(lab.hand_position) - d.hand.position)
+    clfs = {k: library.build_classifier(k, *v, seed=seed, weights=WEIGHTS[k]) for k, v in data.items()}
+    cal = dict(cal)
     # the grasp site relative to the seen distal end of the hand, per posture (median, m)
     cal["hand_offset"] = {k: [round(float(x), 4) for x in np.median(v, axis=0)] for k, v in sorted(offsets.items())}
-    meta = {"seed": seed, "scenes": n_scenes, "examples": {k: len(v[2]) for k, v in data.items()}}
-    return library.save(root or library.ROOT, clfs, cal, meta)
+    return clfs, cal
