@@ -13,12 +13,12 @@ from assistbot.vision.evaluate import run as evaluate
 from assistbot.vision.scenes import SceneSampler, SceneSpec, pose
 from assistbot.world import PAPER_ARRANGEMENTS, build_world
 
-# Accuracy goals of issue 8 and the margin this test allows on a small set (60 frames; the
-# benchmark measures 500).  Posture and state still fall short of the goals themselves (see
-# benchmarks/vision_accuracy.py): these margins are what the code meets today, not the goal.
-GOAL_OBJECT, GOAL_POSTURE, GOAL_MEDIAN_CM = 0.98, 0.95, 2.0
-MARGIN_OBJECT, MARGIN_POSTURE, MARGIN_MEDIAN_CM = 0.06, 0.30, 0.5
-
+# Accuracy goals of issue 8 and the margin this test allows on its small set (60 frames, where one
+# frame is ~1.7%).  Measured on this set: state 98.7%, posture 90.0%, median 0.9 cm, p95 2.4 cm.
+# Hand posture still falls short of its goal (89% on the 500-frame benchmark): its margin is
+# the wider one.
+GOAL_OBJECT, GOAL_POSTURE, GOAL_MEDIAN_CM, GOAL_P95_CM = 0.98, 0.95, 2.0, 5.0
+MARGIN_OBJECT, MARGIN_POSTURE, MARGIN_MEDIAN_CM, MARGIN_P95_CM = 0.04, 0.10, 0.0, 0.0
 
 @pytest.fixture(scope="module")
 def world():
@@ -95,6 +95,7 @@ def test_seeded_labelled_set_meets_goals_minus_margin():
     assert s.accuracy(("bottle", "glass")) >= GOAL_OBJECT - MARGIN_OBJECT, s.report()
     assert s.accuracy("hand") >= GOAL_POSTURE - MARGIN_POSTURE, s.report()
     assert np.median(s.pos_err) * 100 <= GOAL_MEDIAN_CM + MARGIN_MEDIAN_CM, s.report()
+    assert np.percentile(s.pos_err, 95) * 100 <= GOAL_P95_CM + MARGIN_P95_CM, s.report()
 
 
 def test_new_postures_pose_their_objects():

@@ -3,11 +3,14 @@
 Parts (one idea per file):
   camera.py       pinhole models of the head cameras (K from fovy, pose from the head joints), triangulation
   capture.py      `StereoCapture`: both head cameras offscreen at a rate of simulated time, seeded dropout
-  segment.py      HSV masks per part (calibrated ranges), morphology, connected components
+  segment.py      calibrated HSV ranges compiled to an RGB look-up table; one connected-components pass per frame
   calibration.py  `calibrate`: HSV ranges and static skin spots from labelled calibration renders
-  detect.py       `Detector`: blobs -> stereo-matched objects and hand, 3-D positions, crops, features
-  library.py      the template library (prototype PNGs + labelled examples) and the classifier
-  pipeline.py     `Vision.perceive(frame) -> Percept`, `Vision.overlay`, `build_library`
+  detect.py       `Detector`: blobs -> stereo-matched objects and hand (arm root at the sleeve), 3-D positions,
+                  visibility from the silhouette's extent, crops, features
+  library.py      the template library (prototype PNGs, matchTemplate over a prototype mosaic) and the
+                  classifiers (k-NN over template scores + features; hand postures: a small network)
+  pipeline.py     `Vision.perceive(frame) -> Percept` (stopper rules, low confidence when the hand hides
+                  it), `Vision.overlay`, `build_library`
   scenes.py       labelled scene posing for calibration, templates, tests and the benchmark
 
 Frames: positions are table coordinates (m, origin at the table top centre, x toward the

@@ -27,22 +27,40 @@ KINDS = {"bottle": ("closed", "open"), "glass": ("inverted", "empty", "full"),
 K_NEIGHBOURS = 5
 
 
-def _pad(crop: np.ndarray) -> np.ndarray:
-    return cv2.copyMakeBorder(crop.astype(np.float32), 3, 3, 3, 3, cv2.BORDER_CONSTANT, value=0)
+_SHIFT = 3
+_MOSAICS: dict[int, tuple] = {}
+
+
+def _mosaic(protos: list[list[np.ndarray]]) -> tuple[np.ndarray, np.ndarray, int]:
+    """All prototypes side by side, each with a `_SHIFT`-px zero border: (image, class per prototype, stride)."""
+    key = id(protos)
+    if key not in _MOSAICS:
+        flat = [(c, p) for c, plist in enumerate(protos) for p in plist]
+        h, w = flat[0][1].shape
+        stride = w + 2 * _SHIFT
+        img = np.zeros((h + 2 * _SHIFT, len(flat) * stride), np.float32)
+        for j, (_, p) in enumerate(flat):
+            img[_SHIFT:_SHIFT + h, j * stride + _SHIFT:j * stride + _SHIFT + w] = p
+        _MOSAICS[key] = (img, np.array([c for c, _ in flat]), stride, protos)   # protos kept: the id stays theirs
+    img, cls, stride, _ = _MOSAICS[key]
+    return img, cls, stride
 
 
 def template_scores(crop: np.ndarray | None, protos: list[list[np.ndarray]]) -> np.ndarray:
     """Best normalised match (cv2.matchTemplate, TM_CCOEFF_NORMED, +-3 px shifts) of crop against each
-    class's prototypes: one score per class.  Crops are normalised to the template size by the
-    detector (their size follows the object's distance), so one scale suffices."""
+    class's prototypes: one score per class, in ONE matchTemplate call (the crop slides over a
+    mosaic of all prototypes).  Crops are normalised to the template size by the detector (their
+    size follows the object's distance), so one scale suffices."""
     if crop is None or not any(protos):
         return np.zeros(0, np.float32)
+    img, cls, stride = _mosaic(protos)
+    r = cv2.matchTemplate(img, crop.astype(np.float32), cv2.TM_CCOEFF_NORMED)
+    r = np.nan_to_num(r, nan=-1.0, posinf=-1.0, neginf=-1.0)
+    n = len(cls)
+    r = np.pad(r, ((0, 0), (0, n * stride - r.shape[1])), constant_values=-1.0)
+    per = r.reshape(r.shape[0], n, stride)[:, :, :2 * _SHIFT + 1].max(axis=(0, 2))
     out = np.full(len(protos), -1.0, np.float32)
-    img = _pad(crop)
-    for c, plist in enumerate(protos):
-        for p in plist:
-            r = cv2.matchTemplate(img, p, cv2.TM_CCOEFF_NORMED)
-            out[c] = max(out[c], float(r.max()))
+    np.maximum.at(out, cls, per)
     return out
 
 

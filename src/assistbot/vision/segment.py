@@ -58,11 +58,9 @@ class ColourTable:
 
     def labels(self, img: np.ndarray, step: int = 1) -> np.ndarray:
         """(H/step, W/step) uint8 labels of an RGB image (every `step`-th pixel)."""
-        sub = img[::step, ::step] if step > 1 else img
-        sh = 8 - _BITS
-        idx = (sub[..., 0].astype(np.int32) >> sh) << (2 * _BITS)
-        idx |= (sub[..., 1] >> sh).astype(np.int32) << _BITS
-        idx |= (sub[..., 2] >> sh)
+        sub = cv2.resize(img, None, fx=1 / step, fy=1 / step, interpolation=cv2.INTER_NEAREST) if step > 1 else img
+        q = (sub >> (8 - _BITS)).astype(np.int32)
+        idx = (q[..., 0] << (2 * _BITS)) | (q[..., 1] << _BITS) | q[..., 2]
         return self.lut[idx]
 
 
@@ -81,3 +79,37 @@ def components(mask: np.ndarray, part: str, keep: int = 4, scale: int = 2) -> tu
         x, y, w, h = (int(v) * scale for v in stats[i, :4])
         res.append(Blob(part, float(areas[k]) * scale * scale, (cents[i] + 0.5) * scale - 0.5, (x, y, w, h), int(i)))
     return res, lab
+
+
+def components_tiled(masks: list[list[np.ndarray]], parts: tuple[str, ...], keep: tuple[int, ...], scale: int = 2):
+    """Connected components of several (half-resolution) masks in ONE pass: masks[camera][k] are
+    tiled into one image with 1-px gaps (components cannot cross a gap).  Returns, per camera and
+    part, the `keep[k]` largest blobs (full-resolution pixels; ``Blob.label`` indexes the views) and
+    per camera and part a view of the label image over that mask."""
+    H, W = masks[0][0].shape
+    nc, nk = len(masks), len(parts)
+    big = np.zeros((nc * (H + 1), nk * (W + 1)), np.uint8)
+    for c in range(nc):
+        for k in range(nk):
+            big[c * (H + 1):c * (H + 1) + H, k * (W + 1):k * (W + 1) + W] = masks[c][k]
+    # Grana's algorithm: ~3x faster than the default on these sparse masks
+    n, lab, stats, cents = cv2.connectedComponentsWithStatsWithAlgorithm(big, 8, cv2.CV_32S, cv2.CCL_GRANA)
+    views = [[lab[c * (H + 1):c * (H + 1) + H, k * (W + 1):k * (W + 1) + W] for k in range(nk)] for c in range(nc)]
+    out: list[list[list[Blob]]] = [[[] for _ in range(nk)] for _ in range(nc)]
+    if n <= 1:
+        return out, views
+    cam = stats[1:, cv2.CC_STAT_TOP] // (H + 1)
+    part = stats[1:, cv2.CC_STAT_LEFT] // (W + 1)
+    areas = stats[1:, cv2.CC_STAT_AREA]
+    min_area = np.array([MIN_AREA[p] for p in parts])[part]
+    for i in np.flatnonzero(areas >= min_area)[np.argsort(-areas[areas >= min_area], kind="stable")]:
+        c, k = int(cam[i]), int(part[i])
+        if len(out[c][k]) >= keep[k]:
+            continue
+        x, y, w, h = (int(v) for v in stats[i + 1, :4])
+        x -= k * (W + 1)
+        y -= c * (H + 1)
+        cent = cents[i + 1] - [k * (W + 1), c * (H + 1)]
+        out[c][k].append(Blob(parts[k], float(areas[i]) * scale * scale, (cent + 0.5) * scale - 0.5,
+                              (x * scale, y * scale, w * scale, h * scale), int(i + 1)))
+    return out, views
