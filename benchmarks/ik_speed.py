@@ -99,7 +99,7 @@ def bench_primitives() -> list[tuple[str, str, float, float, float, float]]:
     from assistbot.robot.controller import RobotController
     from assistbot.robot.primitives import Status
     from assistbot.robot.sim import CONTROL_DT, body_xy
-    from assistbot.robot.mjcf_patch import build_world
+    from assistbot.world import build_world
     from assistbot.world import Arrangement
 
     rows = []

@@ -12,19 +12,17 @@ import numpy as np
 import pytest
 
 from assistbot.human.controller import HumanController
-from assistbot.robot import mjcf_patch
 from assistbot.robot import primitives as P
 from assistbot.robot.actions import ACTION_PRIMITIVES, NOT_YET_PHYSICAL
 from assistbot.robot.controller import HANDOVER_DEPTH, RobotController
 from assistbot.robot.primitives import Status
 from assistbot.robot.sim import CONTROL_DT, body_xy, run
+from assistbot.world import Arrangement, build_world
 from assistbot.task.drinking import ROBOT_ACTIONS
-from assistbot.world import Arrangement
 
 
 def make(bottle: str, glass: str):
-    # the world's scene with the robot's finger spacing widened in memory (robot.mjcf_patch) until robot.xml has it
-    w = mjcf_patch.build_world(Arrangement.from_options(bottle, glass), seed=0)
+    w = build_world(Arrangement.from_options(bottle, glass), seed=0)
     return w, RobotController(w.model, w.data)
 
 

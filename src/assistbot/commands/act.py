@@ -66,7 +66,7 @@ def run(args: argparse.Namespace) -> int:
     from assistbot.robot.controller import RobotController
     from assistbot.robot.sim import body_xy
     from assistbot.robot.sim import run as run_primitive
-    from assistbot.robot.mjcf_patch import build_world
+    from assistbot.world import build_world
     from assistbot.world.render import Renderer
 
     world = build_world(arrangement, seed=0)

@@ -16,8 +16,9 @@ from dataclasses import dataclass
 import numpy as np
 
 #: the robot's hand counts as "held out toward the human" when its tool point is within
-#: this x (world, m) of the middle line, on either side
-HELD_OUT_X = 0.20
+#: this x (world, m) of the middle line, on either side: at the hand-over zone, not while
+#: it works at the robot's own places (x >= 0.10)
+HELD_OUT_X = 0.08
 OPEN_FINGERS = 0.3   # rad, finger flexion below which the robot's hand looks open
 
 

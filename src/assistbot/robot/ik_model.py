@@ -15,7 +15,6 @@ from pathlib import Path
 
 import mujoco
 
-from assistbot.robot import mjcf_patch
 from assistbot.world import layout
 
 ARM_JOINTS: tuple[str, ...] = tuple(f"robot_j{i}" for i in range(1, 8))
@@ -39,7 +38,7 @@ def default_scene_xml() -> Path:
 
 def build_ik_model(scene_xml: str | Path | None = None) -> mujoco.MjModel:
     """Compile the reduced IK model from the scene MJCF (default: the world's scene.xml)."""
-    spec = mjcf_patch.apply(mujoco.MjSpec.from_file(str(scene_xml or default_scene_xml())))
+    spec = mujoco.MjSpec.from_file(str(scene_xml or default_scene_xml()))
     for group in (spec.keys, spec.equalities, spec.actuators, spec.sensors, spec.excludes):
         for element in list(group):
             spec.delete(element)
