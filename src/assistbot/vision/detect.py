@@ -49,6 +49,10 @@ STATIC_SKIN_R = 0.08       # m: skin this close to a calibrated static spot is n
 HAND_REACH = 0.10          # m: hand crop half-size
 _B, _S, _G, _L, _K, _T = (LABEL[p] for p in ("bottle", "stopper", "glass", "liquid", "skin", "shirt"))
 _DILATE = np.ones((5, 5), np.uint8)
+_ANG = np.linspace(0, 2 * np.pi, 8, endpoint=False)
+#: an upright object's outline points (base and top rings) relative to its base centre
+_OUTLINE = {n: np.vstack([np.column_stack([layout.OBJECT_RADIUS[n] * np.cos(_ANG), layout.OBJECT_RADIUS[n] * np.sin(_ANG), np.full(8, z)])
+                          for z in (0.0, HEIGHT[n])]) for n in HEIGHT}
 
 
 @dataclass
@@ -113,10 +117,7 @@ def _match(a: Blob, cands: list[Blob]) -> Blob | None:
 
 def _expected_box(cam: CameraModel, base: np.ndarray, name: str) -> tuple[float, float]:
     """(width, height) in pixels of an upright object of type name standing at base."""
-    r, H = layout.OBJECT_RADIUS[name], HEIGHT[name]
-    ang = np.linspace(0, 2 * np.pi, 8, endpoint=False)
-    ring = np.column_stack([r * np.cos(ang), r * np.sin(ang), np.zeros(8)])
-    pts = np.vstack([base + ring, base + ring + [0, 0, H]])
+    pts = base + _OUTLINE[name]
     uv = cam.project(pts)
     if not np.all(np.isfinite(uv)):
         return 1.0, 1.0
@@ -149,17 +150,18 @@ class _Roi:
         tu = np.flatnonzero(m[self.top_r:self.top_r + 2].any(axis=0))
         self.bottom = np.array([self.x0 + 0.5 * (bu[0] + bu[-1]), self.y0 + self.bot_r + 0.5])
         self.top = np.array([self.x0 + 0.5 * (tu[0] + tu[-1]), self.y0 + self.top_r - 0.5])
-        ys, xs = np.nonzero(m)
-        if len(xs) > 3:
-            cov = np.cov(np.vstack([xs, ys]))
-            ev, evec = np.linalg.eigh(cov)
-            v = evec[:, 1]
-            self.tilt = float(np.arccos(min(1.0, abs(v[1])))) if ev[1] > 1.5 * ev[0] else 0.0
-            self.centroid = np.array([xs.mean() + self.x0 + 0.5, ys.mean() + self.y0 + 0.5])
-        else:
-            self.tilt = 0.0
-            self.centroid = np.array([self.x0 + xs.mean() + 0.5, self.y0 + ys.mean() + 0.5])
-        self.area = float(m.sum())
+        mo = cv2.moments(m.view(np.uint8), binaryImage=True)
+        n = mo["m00"]
+        self.centroid = np.array([mo["m10"] / n + self.x0 + 0.5, mo["m01"] / n + self.y0 + 0.5])
+        self.tilt = 0.0
+        if n > 3:   # the silhouette's main axis from its central moments
+            a, b, c = mo["mu20"] / n, mo["mu11"] / n, mo["mu02"] / n
+            root = np.sqrt(max(0.0, 0.25 * (a - c) ** 2 + b * b))
+            l1, l0 = 0.5 * (a + c) + root, 0.5 * (a + c) - root
+            if l1 > 1.5 * l0:   # elongated: the angle of the main axis (b, l1 - a) from the image vertical
+                vx, vy = (b, l1 - a) if abs(b) > 1e-12 else ((1.0, 0.0) if a >= c else (0.0, 1.0))
+                self.tilt = float(np.arccos(min(1.0, abs(vy) / np.hypot(vx, vy))))
+        self.area = float(n)
 
 
 class Detector:
@@ -210,8 +212,7 @@ class Detector:
             if not r.ok:
                 return ObjectDetection(name, False, blobs=(a, b))
             rois.append(r)
-        Xb = triangulate(cams[0], cams[1], rois[0].bottom, rois[1].bottom)[0]
-        Xt = triangulate(cams[0], cams[1], rois[0].top, rois[1].top)[0]
+        Xb, Xt = triangulate(cams[0], cams[1], np.array([rois[0].bottom, rois[0].top]), np.array([rois[1].bottom, rois[1].top]))
         r_obj = layout.OBJECT_RADIUS[name]
         on_table = abs(Xb[2]) < ON_TABLE_TOL
         if on_table:
@@ -279,17 +280,16 @@ class Detector:
     def _hand(self, blobs, lab, imgs, cams, det: Detections) -> HandDetection:
         (bl, cl), (br, cr) = blobs[0]["skin"], blobs[1]["skin"]
         best = None
-        for a in bl:
-            b = _match(a, br)
-            if b is None:
-                continue
-            X = triangulate(cams[0], cams[1], a.centroid, b.centroid)[0]
-            if not (-0.05 < X[2] < 0.7 and -0.7 < X[0] < 0.3 and abs(X[1]) < 0.7):
-                continue      # not over the table: floor, background
-            if len(self.static_skin) and np.min(np.linalg.norm(self.static_skin - X, axis=1)) < STATIC_SKIN_R:
-                continue
-            if best is None or a.area > best[0].area:
-                best = (a, b, X)
+        pairs = [(a, b) for a in bl for b in (_match(a, br),) if b is not None]
+        if pairs:   # all candidates triangulated at once
+            Xs = triangulate(cams[0], cams[1], np.array([a.centroid for a, _ in pairs]), np.array([b.centroid for _, b in pairs]))
+            for (a, b), X in zip(pairs, Xs):
+                if not (-0.05 < X[2] < 0.7 and -0.7 < X[0] < 0.3 and abs(X[1]) < 0.7):
+                    continue      # not over the table: floor, background
+                if len(self.static_skin) and np.min(np.linalg.norm(self.static_skin - X, axis=1)) < STATIC_SKIN_R:
+                    continue
+                if best is None or a.area > best[0].area:
+                    best = (a, b, X)
         if best is None:
             return HandDetection(False)
         a, b, X = best
@@ -317,8 +317,7 @@ class Detector:
                 ax = ax / max(1e-6, float(np.linalg.norm(ax)))
                 q = far - far.mean(axis=0)
                 spread = [float(np.std(q @ ax)), float(np.std(q @ np.array([-ax[1], ax[0]]))), float(len(far))]
-        Xd = triangulate(cams[0], cams[1], ends[0], ends[1])[0]
-        Xr = triangulate(cams[0], cams[1], roots[0], roots[1])[0]
+        Xd, Xr = triangulate(cams[0], cams[1], np.array([ends[0], roots[0]]), np.array([ends[1], roots[1]]))
         depth = float(np.linalg.norm(Xd - cams[0].C))
         half = int(round(cams[0].K[0, 0] * HAND_REACH / depth))
         u, v = (int(round(c)) for c in ends[0])
