@@ -335,6 +335,8 @@ HOLD_OUT_BASE = 0.11
 HUMAN_HOLD_OUT_BASE_Z = 0.86
 #: where a received object is put down in the RWS (table x, y)
 RECEIVE_SPOT = (0.20, 0.0)
+#: where a received object may be put down (table x, y): the free one farthest from what stands in the RWS
+RECEIVE_SPOTS = ((0.20, -0.12), (0.20, 0.12), (0.24, 0.0))
 
 
 def _point(prim: Primitive, z: float) -> np.ndarray:
@@ -752,10 +754,29 @@ class Receive(Primitive):
 
     name = "receive"
 
-    def __init__(self, robot, obj="held_out", spot=RECEIVE_SPOT, timeout: float = 10.0, **kw):
+    def __init__(self, robot, obj="held_out", spot=None, timeout: float = 10.0, **kw):
+        """``spot``: where to put the object down; None: the place of RECEIVE_SPOTS farthest from
+        the objects seen standing in the RWS (``locate``), so that a later pour or grasp has room."""
         super().__init__(robot, obj, **kw)
-        self.spot = np.array(spot, float)
+        self.spot = None if spot is None else np.array(spot, float)
         self.timeout = timeout
+
+    def free_spot(self) -> np.ndarray:
+        if self.spot is not None:
+            return self.spot
+        tcp = self.robot.tcp_pose().translation()[:2]
+        standing = []
+        for name in ("bottle", "glass"):
+            xy = self.locate(name)
+            # the object in the hand is at the hand; the others count if they stand in the RWS
+            if xy is not None and xy[0] > 0.05 and np.hypot(xy[0] - tcp[0], xy[1] - tcp[1]) > 0.08:
+                standing.append(np.asarray(xy, float))
+        spots = [np.array(c, float) for c in RECEIVE_SPOTS]
+        if not standing:
+            self.spot = np.array(RECEIVE_SPOT, float)
+        else:
+            self.spot = max(spots, key=lambda c: min(np.hypot(*(c - o)) for o in standing))
+        return self.spot
 
     def phases(self):
         return _reach_and_grasp(self, base_z=HUMAN_HOLD_OUT_BASE_Z) + [
@@ -763,6 +784,6 @@ class Receive(Primitive):
             WaitFor("wait for the human to let go", lambda p: not p.human_holds(), self.timeout,
                     "the human did not let go"),
             Relative("take back", [0.06, 0.0, 0.03], duration=1.0),
-            *_put_down_at(lambda p: p.spot),
+            *_put_down_at(lambda p: p.free_spot()),
             *_retract(),
         ]
