@@ -126,3 +126,5 @@ def test_report_counts_the_expected_decision_sequence(spec, tmp_path):
     assert "## Expected decision sequence" in md and "| 0.8 | 6 | 6 | 1.00 |" in md
     md = write_report(out, expect="A")[0].read_text()
     assert "| 0.8 | 6 | 0 | 0.00 |" in md.split("## Expected decision sequence")[1]
+    md = write_report(out, expect="A > ...")[0].read_text()  # a prefix
+    assert "| 0.8 | 6 | 6 | 1.00 |" in md.split("## Expected decision sequence")[1]

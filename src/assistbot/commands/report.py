@@ -14,7 +14,8 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument("dir", type=Path, metavar="DIR", help="a sweep's results folder (holding results.csv)")
     p.add_argument("--out", type=Path, default=None, help="where to write the report (default: DIR/report)")
     p.add_argument("--expect", default=None, metavar="'A > B > ...'",
-                   help="an AEL decision sequence: count per parameter value the episodes that made exactly it")
+                   help="an AEL decision sequence: count per parameter value the episodes that made exactly it "
+                        "(ending in '> ...': that began with it)")
 
 
 def run(args: argparse.Namespace) -> int:

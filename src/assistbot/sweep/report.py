@@ -192,7 +192,15 @@ def _expect_section(rows: list[dict], factors: list[str], expect: str) -> list[s
     from assistbot.sweep.stats import wilson
 
     want = _sequence(expect)
-    md = ["## Expected decision sequence", "", f"Expected: `{' > '.join(want)}` (the whole AEL sequence, in order).", ""]
+    prefix = bool(want) and want[-1] == "..."  # "A > B > ..." : the sequence starts with A, B
+    if prefix:
+        want = want[:-1]
+
+    def made(seq: list[str]) -> bool:
+        return seq[: len(want)] == want if prefix else seq == want
+
+    what = "the first AEL decisions, in order" if prefix else "the whole AEL sequence, in order"
+    md = ["## Expected decision sequence", "", f"Expected: `{' > '.join(want)}{' > ...' if prefix else ''}` ({what}).", ""]
     for factor in factors or ["scenario"]:
         md += [f"| {factor} | n | made it | rate | 95% CI (Wilson) |", "|---|---:|---:|---:|---|"]
         groups: dict[Any, list[dict]] = defaultdict(list)
@@ -200,7 +208,7 @@ def _expect_section(rows: list[dict], factors: list[str], expect: str) -> list[s
             groups[_key(r.get(factor))].append(r)
         for v in _ordered([r.get(factor) for r in rows]):
             grp = groups[v]
-            k = sum(1 for r in grp if _sequence(r.get("decisions")) == want)
+            k = sum(1 for r in grp if made(_sequence(r.get("decisions"))))
             lo, hi = wilson(k, len(grp))
             md.append(f"| {_fmt_value(v)} | {len(grp)} | {k} | {_f(k / len(grp))} | {_ci(lo, hi)} |")
         md.append("")
