@@ -475,6 +475,21 @@ class _FreezeXY(Phase):
         return Status.SUCCEEDED, ""
 
 
+def free_rws_spot(p: "Primitive") -> np.ndarray:
+    """The place of RECEIVE_SPOTS farthest from the objects seen standing in the RWS (``p.locate``);
+    the object in the robot's hand does not count. RECEIVE_SPOT when nothing else stands there."""
+    tcp = p.robot.tcp_pose().translation()[:2]
+    standing = []
+    for name in ("bottle", "glass"):
+        xy = p.locate(name)
+        if xy is not None and xy[0] > 0.05 and np.hypot(xy[0] - tcp[0], xy[1] - tcp[1]) > 0.08:
+            standing.append(np.asarray(xy, float))
+    if not standing:
+        return np.array(RECEIVE_SPOT, float)
+    spots = [np.array(c, float) for c in RECEIVE_SPOTS]
+    return max(spots, key=lambda c: min(np.hypot(*(c - o)) for o in standing))
+
+
 def _put_down_at(xy_of: Callable[[Primitive], np.ndarray], lift: float = LIFT) -> list[Phase]:
     """Carry the held object (upright) above a table spot, lower it onto the table, let go, back off."""
 
@@ -623,7 +638,7 @@ class HoldBottleForStopper(Primitive):
 
     A bottle seen in the HWS (target x < 0) can only be one the human holds out: the robot grasps it
     at the human's hold-out height, waits until the human's hand lets go (``human_holds()``), and
-    afterwards puts it down in the RWS at RECEIVE_SPOT. The grip holds the bottle by friction against
+    afterwards puts it down at a free place in the RWS (`free_rws_spot`). The grip holds the bottle by friction against
     the pull; the world decides when the fit gives."""
 
     name = "hold_bottle_for_stopper"
@@ -635,6 +650,12 @@ class HoldBottleForStopper(Primitive):
         self.timeout = timeout
         self.home_xy: np.ndarray | None = None
 
+    def _home(self) -> np.ndarray:
+        """Where a bottle taken from the human's hand goes: a free place in the RWS (chosen once)."""
+        if self.home_xy is None:
+            self.home_xy = free_rws_spot(self)
+        return self.home_xy
+
     def phases(self):
         hold = [
             _hold_out(self.HOLD_BASE, self.HOLD_XY),
@@ -643,12 +664,11 @@ class HoldBottleForStopper(Primitive):
             Wait("settle", 0.3),
         ]
         if self.xy()[0] < 0.0:  # held out by the human
-            self.home_xy = np.array(RECEIVE_SPOT, float)
             return _reach_and_grasp(self, base_z=HUMAN_HOLD_OUT_BASE_Z) + [
                 Wait("hold", 1.5),
                 WaitFor("wait for the human to let go", lambda p: not p.human_holds(), 10.0, "the human did not let go"),
                 *hold,
-                *_put_down_at(lambda p: p.home_xy),
+                *_put_down_at(lambda p: p._home()),
                 *_retract(),
             ]
         return _reach_and_grasp(self) + [
@@ -762,20 +782,8 @@ class Receive(Primitive):
         self.timeout = timeout
 
     def free_spot(self) -> np.ndarray:
-        if self.spot is not None:
-            return self.spot
-        tcp = self.robot.tcp_pose().translation()[:2]
-        standing = []
-        for name in ("bottle", "glass"):
-            xy = self.locate(name)
-            # the object in the hand is at the hand; the others count if they stand in the RWS
-            if xy is not None and xy[0] > 0.05 and np.hypot(xy[0] - tcp[0], xy[1] - tcp[1]) > 0.08:
-                standing.append(np.asarray(xy, float))
-        spots = [np.array(c, float) for c in RECEIVE_SPOTS]
-        if not standing:
-            self.spot = np.array(RECEIVE_SPOT, float)
-        else:
-            self.spot = max(spots, key=lambda c: min(np.hypot(*(c - o)) for o in standing))
+        if self.spot is None:
+            self.spot = free_rws_spot(self)
         return self.spot
 
     def phases(self):
