@@ -101,11 +101,12 @@ class Classifier:
         """(class, confidence in [0, 1], class template scores)."""
         f = self.features(crop, extra)
         z = (f - self.mean) / self.std * self.weights
-        if self.mlp is not None:
+        if self.mlp is not None:   # an ensemble: the members' probabilities averaged
             m = self.mlp
-            logit = np.tanh(z @ m["W1"] + m["b1"]) @ m["W2"] + m["b2"]
-            pr = np.exp(logit - logit.max())
-            pr /= pr.sum()
+            h = np.tanh(np.einsum("f,mfh->mh", z, m["W1"]) + m["b1"])
+            logit = np.einsum("mh,mhc->mc", h, m["W2"]) + m["b2"]
+            pr = np.exp(logit - logit.max(axis=1, keepdims=True))
+            pr = (pr / pr.sum(axis=1, keepdims=True)).mean(axis=0)
             c = int(np.argmax(pr))
             return self.classes[c], float(pr[c]), f[:len(f) - len(extra)]
         d = np.sum((self.X - z) ** 2, axis=1)
@@ -136,7 +137,10 @@ def build_classifier(kind: str, crops: list[np.ndarray | None], extras: list[np.
     if weights is not None:
         w[len(w) - len(weights):] = weights      # weights of the shape features (template scores weigh 1)
     Z = (F - mean) / std * w
-    mlp = train_mlp(Z, y, len(classes), seed) if kind in MLP_KINDS else None
+    mlp = None
+    if kind in MLP_KINDS:
+        members = [train_mlp(Z, y, len(classes), seed * 100 + j) for j in range(MLP_MEMBERS)]
+        mlp = {k: np.stack([m[k] for m in members]) for k in members[0]}
     if mlp is not None:
         Z = Z[:0]                  # the network replaces the examples (their labels stay, for the counts)
     return Classifier(kind, classes, protos_f, Z, y, mean, std, w, mlp)
@@ -144,6 +148,7 @@ def build_classifier(kind: str, crops: list[np.ndarray | None], extras: list[np.
 
 MLP_KINDS = ("hand",)
 MLP_HIDDEN, MLP_EPOCHS, MLP_RATE, MLP_DECAY = 64, 3000, 0.5, 3e-3
+MLP_MEMBERS = 3             # networks from different seeds, averaged: a steadier fit than one
 
 
 def train_mlp(Z: np.ndarray, y: np.ndarray, n_classes: int, seed: int = 0) -> dict[str, np.ndarray]:
@@ -184,7 +189,7 @@ def save(root: Path, classifiers: dict[str, Classifier], calibration: dict, meta
         entry = {"classes": list(clf.classes), "prototypes": {}, "mean": _r(clf.mean), "std": _r(clf.std),
                  "weights": _r(clf.weights), "examples": {"X": [_r(x) for x in clf.X], "y": clf.y.tolist()}}
         if clf.mlp is not None:
-            entry["mlp"] = {k: [_r(row) for row in np.atleast_2d(v)] for k, v in clf.mlp.items()}
+            entry["mlp"] = {k: [[_r(row) for row in np.atleast_2d(member)] for member in v] for k, v in clf.mlp.items()}
         for c, plist in zip(clf.classes, clf.protos):
             names = []
             for j, p in enumerate(plist):
@@ -225,7 +230,7 @@ def load(root: Path | None = None) -> tuple[dict[str, Classifier], dict]:
         mlp = None
         if "mlp" in e:
             mlp = {k: np.array(v, np.float32) for k, v in e["mlp"].items()}
-            mlp["b1"], mlp["b2"] = mlp["b1"].ravel(), mlp["b2"].ravel()
+            mlp["b1"], mlp["b2"] = mlp["b1"][:, 0], mlp["b2"][:, 0]     # (members, units)
         out[kind] = Classifier(kind, tuple(e["classes"]), protos, X, np.array(e["examples"]["y"], int),
                                np.array(e["mean"], np.float32), np.array(e["std"], np.float32), np.array(e["weights"], np.float32), mlp)
     return out, load_calibration(root)
