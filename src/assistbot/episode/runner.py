@@ -81,13 +81,12 @@ def split_overrides(overrides: dict[str, Any], where: str) -> tuple[dict, dict, 
     cog_paths = ["cognition." + p for p in CognitionConfig().paths()]
     valid = cog_paths + [f"human.{p}" for p in HUMAN_PARAMS] + ["vision.dropout"]
     for path, value in overrides.items():
-        if path.startswith("cognition."):
-            cog[path[len("cognition."):]] = value
+        if path in cog_paths:
             try:
                 CognitionConfig().set(path[len("cognition."):], value)
-            except UserError:
-                close = difflib.get_close_matches(path, valid, n=3)
-                raise UserError(where, path, "unknown parameter path" + (f"; did you mean {', '.join(close)}?" if close else "")) from None
+            except UserError as exc:
+                raise UserError(where, path, exc.message) from None
+            cog[path[len("cognition."):]] = value
         elif path.startswith("human.") and path[6:] in HUMAN_PARAMS:
             hum[path[6:]] = value
         elif path == "vision.dropout":
