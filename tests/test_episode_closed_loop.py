@@ -44,3 +44,20 @@ def test_paper_fig3_4_with_oracle_perception_ends_with_the_drink_in_the_seeds_or
     assert removed["robot_holds"] == "bottle"
     assert r.min_distance_human >= 0.05
     assert r.spilled_fraction < 0.10
+
+
+def test_paper_fig5_passive_user_with_oracle_perception():
+    r = episode("paper-fig5")
+    decisions = [a for _, a in r.decisions]
+    assert r.success, (r.end_reason, decisions, r.actions)
+    assert in_order(decisions, ["Grasp-hold-bottle-to-remove-cup", "Request-glass",
+                                "Reach-grasp-open-bottle-fill-glass", "Reach-full-glass-to-hand-over"]), decisions
+    assert "Hand-over-bottle" not in decisions[: decisions.index("Request-glass")]
+    # the passive person starts nothing before the robot first speaks to them
+    first_said = min(u["t"] for u in r.utterances if u["source"].startswith("AEL:"))
+    starts = [e for e in r.human_events if e["kind"] == "start"]
+    assert starts and all(e["t"] > first_said for e in starts)
+    events = [e["event"] for e in r.world_events]
+    assert in_order(events, ["stopper_removed", "glass_filled", "drink"]), events
+    assert r.min_distance_human >= 0.05
+    assert r.spilled_fraction < 0.10
