@@ -26,8 +26,13 @@ debs:
 	  else echo "note: missing Debian packages:$$missing (install them as root for rendering and speech)"; fi; \
 	fi
 
+# The main job: the seed's Fig. 3-4 storyline as one episode, to render/paper-fig3-4/video.mp4.
+# `assistbot run` exits 1 when the person did not drink; the demo still shows what happened.
+# oracle: the labelled ground-truth perception (every output says so). With vision the robot does not
+# yet complete this storyline: it misjudges where a held-out bottle is (see the open vision issue).
+PERCEPTION ?= oracle
 demo: $(STAMP)
-	$(BIN)/assistbot fields-demo
+	$(BIN)/assistbot run paper-fig3-4 --perception $(PERCEPTION) || [ $$? -eq 1 ]
 
 test: $(STAMP)
 	$(BIN)/python -m pytest -m "not slow" -q
