@@ -18,17 +18,8 @@ from pathlib import Path
 import pytest
 
 from assistbot.sweep.results import VOLATILE, read_rows
+from _scenarios import TINY
 
-TINY = """\
-name: tiny
-seed: 0
-time_limit: 3
-objects:
-  bottle: {zone: RWS, state: closed}
-  glass: {zone: HWS, state: empty}
-human:
-  profile: passive
-"""
 SWEEP = ["--param", "cognition.k=0.8,1.2", "--param", "human.reaction_delay=0.2:1:2", "--seeds", "2",
          "--perception", "oracle", "--workers", "2", "--no-progress"]
 

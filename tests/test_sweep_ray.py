@@ -15,17 +15,8 @@ import pytest
 pytest.importorskip("ray")
 
 from assistbot.sweep.results import VOLATILE, read_rows  # noqa: E402
+from _scenarios import TINY
 
-TINY = """\
-name: tiny
-seed: 0
-time_limit: 3
-objects:
-  bottle: {zone: RWS, state: closed}
-  glass: {zone: HWS, state: empty}
-human:
-  profile: passive
-"""
 SWEEP = ["--param", "cognition.k=0.8,1.2,1.6", "--seeds", "2", "--perception", "oracle", "--no-progress"]
 
 

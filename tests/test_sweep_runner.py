@@ -7,17 +7,8 @@ import pytest
 from assistbot.errors import UserError
 from assistbot.sweep import Param, SweepSpec, build_jobs, run_sweep
 from assistbot.sweep.results import read_rows
+from _scenarios import TINY
 
-TINY = """\
-name: tiny
-seed: 0
-time_limit: 3
-objects:
-  bottle: {zone: RWS, state: closed}
-  glass: {zone: HWS, state: empty}
-human:
-  profile: passive
-"""
 
 
 class FakeExecutor:

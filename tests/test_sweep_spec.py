@@ -13,17 +13,8 @@ from assistbot.sweep import Param, SweepSpec, build_jobs, job_id, parse_seeds, p
 from assistbot.sweep.results import ResultStore, columns_for, read_rows
 from assistbot.sweep.spec import load_sweep_file
 from assistbot.sweep.stats import mean_ci, wilson
+from _scenarios import TINY
 
-TINY = """\
-name: tiny
-seed: 0
-time_limit: 3
-objects:
-  bottle: {zone: RWS, state: closed}
-  glass: {zone: HWS, state: empty}
-human:
-  profile: passive
-"""
 
 
 @pytest.fixture
