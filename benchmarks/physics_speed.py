@@ -12,7 +12,6 @@ from __future__ import annotations
 import time
 
 import mujoco
-import numpy as np
 
 from assistbot.world import PAPER_ARRANGEMENTS, Arrangement, build_world
 from assistbot.world.render import Renderer, gl_backend

@@ -10,7 +10,7 @@ from assistbot.errors import UserError
 from assistbot.vision import CaptureConfig, StereoCapture, Vision
 from assistbot.vision.camera import CameraModel, triangulate
 from assistbot.vision.evaluate import run as evaluate
-from assistbot.vision.scenes import SceneSampler, SceneSpec, pose
+from assistbot.vision.scenes import SceneSampler, pose
 from assistbot.world import PAPER_ARRANGEMENTS, build_world
 
 # Accuracy goals of issue 8 and the margin this test allows on its small set (60 frames, where one

@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 import numpy as np
-import pytest
 
 from assistbot.world import Arrangement, HUMAN_ARM_JOINTS, ROBOT_ARM_JOINTS, STOPPER_RELEASE_FORCE, build_world
 from assistbot.world.scripted import ik, ramp

@@ -10,12 +10,12 @@ comes off only if the fit gives, a drink counts only by particles reaching the m
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from typing import Callable, Generator
 
 import numpy as np
 
-from assistbot.human.arm import ORIENT, SHOULDER_XY, grip_orientation, rot_y, rot_z
+from assistbot.human.arm import SHOULDER_XY, grip_orientation, rot_y, rot_z
 from assistbot.world import layout
 
 Gen = Generator[None, None, tuple[bool, str]]

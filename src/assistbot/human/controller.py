@@ -23,7 +23,7 @@ import numpy as np
 
 from assistbot.human import policy
 from assistbot.human.arm import HumanArm
-from assistbot.human.behaviours import BEHAVIOURS, REST, Behaviour
+from assistbot.human.behaviours import BEHAVIOURS, Behaviour
 from assistbot.human.perception import RobotView, see_robot
 from assistbot.human.profiles import PROFILES, Profile
 from assistbot.human.script import HumanConfig, Step

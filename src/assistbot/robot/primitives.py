@@ -36,7 +36,7 @@ from __future__ import annotations
 
 import enum
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from typing import Callable
 
 import mink
@@ -44,7 +44,6 @@ import numpy as np
 
 from assistbot.robot import poses
 from assistbot.robot.controller import REACH, TCP_MIN_X, RobotController
-from assistbot.robot.ik import READY_POSTURE
 from assistbot.robot.target_field import TargetField
 
 TABLE_Z = 0.75

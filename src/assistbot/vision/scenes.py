@@ -159,7 +159,6 @@ class SceneSampler:
                 continue
         else:
             raise RuntimeError("could not place an object in the HWS")
-        spec = self.sample.__func__  # noqa: F841 - keep linters quiet about recursion below
         st = getattr(new, o).state
         variant = str(self.rng.choice(["table", "lifted", "held_out"])) if posture.startswith("grasp") and st != "inverted" else "table"
         jitter = tuple(float(v) for v in self.rng.uniform(-0.03, 0.03, 3))
@@ -223,7 +222,6 @@ def pose(world, spec: SceneSpec) -> Labels:
     jit = np.asarray(spec.jitter)
     held_out = False
     in_hand = None
-    tz = layout.TABLE_Z
     if spec.posture in ("grasp_ag", "grasp_sg"):
         grip = spec.posture[-2:]
         o = spec.target

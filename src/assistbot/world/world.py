@@ -15,7 +15,6 @@ measured quantities, never by who is doing what:
 
 from __future__ import annotations
 
-from dataclasses import dataclass
 
 import mujoco
 import numpy as np
