@@ -20,3 +20,22 @@ class UserError(Exception):
 
     def line(self) -> str:
         return f"error: {self.where}: {self.key}: {self.message}"
+
+
+def read_yaml(path, what: str = "file"):
+    """Parse a user's YAML file; an unreadable file or bad YAML is a `UserError` naming the file (and line)."""
+    from pathlib import Path
+
+    import yaml
+
+    path = Path(path)
+    try:
+        text = path.read_text(encoding="utf-8")
+    except OSError as exc:
+        raise UserError(str(path), "-", f"cannot read the {what}: {exc.strerror}") from None
+    try:
+        return yaml.safe_load(text)
+    except yaml.YAMLError as exc:
+        mark = getattr(exc, "problem_mark", None)
+        at = f"line {mark.line + 1}" if mark else "-"
+        raise UserError(str(path), at, f"not valid YAML: {getattr(exc, 'problem', exc)}") from None

@@ -23,9 +23,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
-import yaml
-
-from assistbot.errors import UserError
+from assistbot.errors import UserError, read_yaml
 
 SCENARIO_DIR = Path(__file__).resolve().parents[2] / "scenarios"
 TOP_KEYS = ("name", "description", "seed", "time_limit", "objects", "human", "overrides")
@@ -97,17 +95,7 @@ def resolve_path(spec: str | Path) -> Path:
 
 def load_scenario(spec: str | Path) -> Scenario:
     path = resolve_path(spec)
-    try:
-        text = path.read_text(encoding="utf-8")
-    except OSError as exc:
-        raise UserError(str(path), "-", f"cannot read the file: {exc.strerror}") from None
-    try:
-        data = yaml.safe_load(text)
-    except yaml.YAMLError as exc:
-        mark = getattr(exc, "problem_mark", None)
-        at = f"line {mark.line + 1}" if mark else "-"
-        raise UserError(str(path), at, f"not valid YAML: {getattr(exc, 'problem', exc)}") from None
-    return parse_scenario(data, path)
+    return parse_scenario(read_yaml(path), path)
 
 
 def shipped_scenarios() -> list[Path]:

@@ -5,15 +5,7 @@ from __future__ import annotations
 from pathlib import Path
 
 from assistbot.cognition.replay import Replay
-
-
-def _pyplot():
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
-    return plt
+from assistbot.fields.plot import pyplot as _pyplot, save_figure
 
 
 def plot_csgl(rep: Replay, path: str | Path, title: str = "") -> Path:
@@ -31,12 +23,7 @@ def plot_csgl(rep: Replay, path: str | Path, title: str = "") -> Path:
     _mark_decisions(rep, axes)
     axes[-1].set_xlabel("time (s)")
     axes[0].set_title(title or f"{rep.timeline.name}: common sub-goals")
-    fig.tight_layout()
-    path = Path(path)
-    path.parent.mkdir(parents=True, exist_ok=True)
-    fig.savefig(path, dpi=110)
-    plt.close(fig)
-    return path
+    return save_figure(fig, path)
 
 
 def plot_layer(rep: Replay, layer: str, path: str | Path, title: str = "") -> Path:
@@ -59,12 +46,7 @@ def plot_layer(rep: Replay, layer: str, path: str | Path, title: str = "") -> Pa
     _mark_decisions(rep, (ax_s, ax_u))
     ax_u.set_xlabel("time (s)")
     ax_s.set_title(title or f"{rep.timeline.name}: {layer}")
-    fig.tight_layout()
-    path = Path(path)
-    path.parent.mkdir(parents=True, exist_ok=True)
-    fig.savefig(path, dpi=110)
-    plt.close(fig)
-    return path
+    return save_figure(fig, path)
 
 
 def _mark_decisions(rep: Replay, axes) -> None:

@@ -32,7 +32,7 @@ from typing import Any, Iterator
 from assistbot import task
 from assistbot.cognition.oracle import HAND_KEYS, OBJECT_KEYS, ROBOT_KEYS, oracle_percept
 from assistbot.cognition.percept import ROBOT_STATUSES, Percept
-from assistbot.errors import UserError
+from assistbot.errors import UserError, read_yaml
 
 TOP_KEYS = ("name", "description", "duration", "percept_rate", "config", "events")
 EVENT_KEYS = ("t", *task.OBJECTS, "hand", "robot")
@@ -147,17 +147,6 @@ def timeline_from_dict(data: Any, source: str = "<timeline>") -> Timeline:
 
 def load_timeline(path: str | Path) -> Timeline:
     """Read and validate a timeline file; every mistake is a `UserError` naming the file and key."""
-    import yaml
-
     path = Path(path)
-    try:
-        text = path.read_text()
-    except OSError as exc:
-        raise UserError(str(path), "-", f"cannot read the timeline: {exc.strerror}") from None
-    try:
-        data = yaml.safe_load(text)
-    except yaml.YAMLError as exc:
-        mark = getattr(exc, "problem_mark", None)
-        line = f"line {mark.line + 1}" if mark else "-"
-        raise UserError(str(path), line, f"not valid YAML: {getattr(exc, 'problem', exc)}") from None
+    data = read_yaml(path, "timeline")
     return timeline_from_dict(data, source=str(path))

@@ -9,7 +9,8 @@ import numpy as np
 from assistbot.fields.record import Recorder
 
 
-def _pyplot():
+def pyplot():
+    """matplotlib.pyplot on the Agg backend (headless)."""
     import matplotlib
 
     matplotlib.use("Agg")
@@ -18,13 +19,23 @@ def _pyplot():
     return plt
 
 
+def save_figure(fig, path: str | Path) -> Path:
+    """Lay out, write as PNG (creating the folder) and close a figure."""
+    fig.tight_layout()
+    path = Path(path)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    fig.savefig(path, dpi=110)
+    pyplot().close(fig)
+    return path
+
+
 def plot_history(rec: Recorder, field: str, path: str | Path, title: str | None = None, threshold: float = 0.0) -> Path:
     """Two panels for one field: total input S (top) and activity u (bottom) over time.
 
     Fields with named items show one labelled line per item (the activity at
     its centre); fields without items show an image of u(x, t).
     """
-    plt = _pyplot()
+    plt = pyplot()
     spec = rec.net.spec.fields[field]
     t = rec.times
     fig, (ax_s, ax_u) = plt.subplots(2, 1, figsize=(8, 5.5), sharex=True)
@@ -47,9 +58,4 @@ def plot_history(rec: Recorder, field: str, path: str | Path, title: str | None 
             ax.set_ylabel("x")
     ax_u.set_xlabel("time (s)")
     ax_s.set_title(title or field)
-    fig.tight_layout()
-    path = Path(path)
-    path.parent.mkdir(parents=True, exist_ok=True)
-    fig.savefig(path, dpi=110)
-    plt.close(fig)
-    return path
+    return save_figure(fig, path)
