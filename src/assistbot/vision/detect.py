@@ -38,6 +38,7 @@ MIN_EXTENT = 0.82
 MIN_EXTENT_HELD = 0.55
 MAX_EXTENT = 1.3           # more than this: merged with something of the same colour
 MAX_TILT = 0.6             # rad in the image: a strongly tilted object (pouring) cannot be placed
+AXIS_ROWS = 5              # rows showing a lifted object's full width in both cameras, to place it by its axis
 HELD_DIST = 0.16           # m: a lifted object this close to the hand is held by it
 #: height of the silhouette's centroid above the base (m) of a lifted, upright object
 CENTROID_Z = {"bottle": 0.085, "glass": 0.05}
@@ -163,6 +164,20 @@ class _Roi:
                 self.tilt = float(np.arccos(min(1.0, abs(vy) / np.hypot(vx, vy))))
         self.area = float(n)
 
+    def axis(self) -> tuple[np.ndarray, np.ndarray]:
+        """(rows, mid-columns), absolute pixels, of the rows that show the silhouette's full width: there
+        the middle of the two edges is an upright cylinder's axis, wherever a hand or fingers cover its
+        top, bottom or part of a side (which the silhouette's centroid is not)."""
+        m = self.mask
+        rows = np.flatnonzero(m.any(axis=1))
+        sub = m[rows]
+        first = sub.argmax(axis=1)
+        last = m.shape[1] - 1 - sub[:, ::-1].argmax(axis=1)
+        width = last - first + 1
+        full = np.percentile(width, 80)
+        ok = np.abs(width - full) <= max(1.5, 0.12 * full)
+        return self.y0 + rows[ok], self.x0 + 0.5 * (first[ok] + last[ok]) + 0.5
+
 
 class Detector:
     """Stateless per-frame detection with a calibration (HSV ranges, static skin spots)."""
@@ -223,11 +238,19 @@ class Detector:
                 P[:2] += r_obj * hdir / np.linalg.norm(hdir)
                 pts.append(P)
             pos = np.mean(pts, axis=0)
-        else:   # lifted: the silhouette's triangulated centroid, less the centroid's height
+        else:   # lifted: x, y from the axis in both images; the height from the silhouette's centroid
             pos = triangulate(cams[0], cams[1], rois[0].centroid, rois[1].centroid)[0]
-            hdir = pos[:2] - 0.5 * (cams[0].C[:2] + cams[1].C[:2])
-            pos[:2] += 0.5 * r_obj * hdir / np.linalg.norm(hdir)
             pos[2] -= CENTROID_Z[name]
+            (vl, ul), (vr, ur) = rois[0].axis(), rois[1].axis()
+            # the head's cameras are parallel and side by side, so a point shows in the same row of both
+            common, il, ir = np.intersect1d(vl, vr, return_indices=True)
+            if common.size >= AXIS_ROWS:
+                v = common + 0.5
+                X = triangulate(cams[0], cams[1], np.column_stack([ul[il], v]), np.column_stack([ur[ir], v]))
+                pos[:2] = np.median(X[:, :2], axis=0)
+            else:
+                hdir = pos[:2] - 0.5 * (cams[0].C[:2] + cams[1].C[:2])
+                pos[:2] += 0.5 * r_obj * hdir / np.linalg.norm(hdir)
         extent = 9.0
         H, W = imgs[0].shape[:2]
         inside = True

@@ -19,6 +19,7 @@ class Score:
     truth: dict[str, list[str]] = field(default_factory=lambda: {k: [] for k in KINDS})
     pred: dict[str, list[str]] = field(default_factory=lambda: {k: [] for k in KINDS})
     pos_err: list[float] = field(default_factory=list)
+    pos_err_lifted: list[float] = field(default_factory=list)    # objects off the table (in a hand)
     hand_err: list[float] = field(default_factory=list)
     low_conf: dict[str, list[bool]] = field(default_factory=lambda: {"bottle": [], "glass": []})   # correct?
     unseen: dict[str, int] = field(default_factory=lambda: {k: 0 for k in KINDS})
@@ -36,7 +37,10 @@ class Score:
             if not op.seen:
                 self.unseen[o] += 1
                 continue
-            self.pos_err.append(float(np.linalg.norm(np.array(op.position) - np.array(labels.objects[o]["position"]))))
+            err = float(np.linalg.norm(np.array(op.position) - np.array(labels.objects[o]["position"])))
+            self.pos_err.append(err)
+            if labels.objects[o]["position"][2] > 0.02:
+                self.pos_err_lifted.append(err)
             if op.confidence <= LOW_CONFIDENCE:
                 self.low_conf[o].append(op.state == labels.objects[o]["state"])
                 continue
@@ -86,6 +90,9 @@ class Score:
         e = np.array(self.pos_err) * 100
         if e.size:
             lines.append(f"\nobject position error: median {np.median(e):.2f} cm, 95th percentile {np.percentile(e, 95):.2f} cm, max {e.max():.1f} cm (n={e.size})")
+        e = np.array(self.pos_err_lifted) * 100
+        if e.size:
+            lines.append(f"  of which lifted in a hand: median {np.median(e):.2f} cm, 95th percentile {np.percentile(e, 95):.2f} cm (n={e.size})")
         e = np.array(self.hand_err) * 100
         if e.size:
             lines.append(f"hand position error (grasp site): median {np.median(e):.2f} cm, 95th percentile {np.percentile(e, 95):.2f} cm (n={e.size})")
