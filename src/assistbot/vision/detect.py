@@ -163,6 +163,17 @@ class _Roi:
                 vx, vy = (b, l1 - a) if abs(b) > 1e-12 else ((1.0, 0.0) if a >= c else (0.0, 1.0))
                 self.tilt = float(np.arccos(min(1.0, abs(vy) / np.hypot(vx, vy))))
         self.area = float(n)
+        self.h_capped = self.h
+
+    def cap(self, part: int) -> None:
+        """Count pixels of ``part`` right on top of the silhouette (a stopper in the bottle's neck, which
+        a camera looking down at a near bottle sees in front of the neck) into its height."""
+        cols = self.mask.any(axis=0)
+        capped = (self.lab[:self.bot_r + 1] == part) & cols
+        rows = np.flatnonzero(capped.any(axis=1))
+        rows = rows[rows >= self.top_r - max(3, int(0.3 * self.h))]
+        if rows.size:
+            self.h_capped = float(self.bot_r - min(self.top_r, int(rows[0])) + 1)
 
     def axis(self) -> tuple[np.ndarray, np.ndarray]:
         """(rows, mid-columns), absolute pixels, of the rows that show the silhouette's full width: there
@@ -226,6 +237,8 @@ class Detector:
             r = _Roi(self.table, img, bb, parts, pad)
             if not r.ok:
                 return ObjectDetection(name, False, blobs=(a, b))
+            if name == "bottle":
+                r.cap(_S)
             rois.append(r)
         Xb, Xt = triangulate(cams[0], cams[1], np.array([rois[0].bottom, rois[0].top]), np.array([rois[1].bottom, rois[1].top]))
         r_obj = layout.OBJECT_RADIUS[name]
@@ -256,7 +269,7 @@ class Detector:
         inside = True
         for cam, roi, bb in zip(cams, rois, (a, b)):
             ew, eh = _expected_box(cam, pos, name)
-            extent = min(extent, roi.h / max(eh, 1.0), roi.w / max(ew, 1.0))
+            extent = min(extent, roi.h_capped / max(eh, 1.0), roi.w / max(ew, 1.0))
             x, y, w, h = bb.bbox
             inside &= x > 1 and y > 1 and x + w < W - 1 and y + h < H - 1
         tilt = max(roi.tilt for roi in rois)

@@ -25,7 +25,7 @@ from assistbot.cognition.percept import HandPercept, ObjectPercept, Percept
 from assistbot.task import OBJECT_STATES
 from assistbot.vision import library
 from assistbot.vision.capture import StereoFrame
-from assistbot.vision.detect import Detections, Detector
+from assistbot.vision.detect import MAX_TILT, Detections, Detector
 from assistbot.world.layout import zone_of
 
 HELD_OUT_X = -0.20          # a raised hand beyond this x (toward the robot) is held out
@@ -35,6 +35,18 @@ STOPPER_SEEN = 0.04         # red touching the bottle, as a share of a stopper's
 HAND_AT_TOP = 0.12          # m: a hand this close to the bottle's top may hide the stopper
 LOW_CONFIDENCE = 0.3        # confidence of a state the pixels cannot show (stopper covered)
 DRINK_Z = 0.25              # m: a glass lifted this high is at the face
+HELD_TOP_XY = 0.06          # m: the top of an object in the robot's hand, horizontally from the TCP
+HELD_TOP_Z = (0.02, 0.16)   # m: ... and above it (side grasps hold 5-8 cm above the base)
+
+
+def _in_robot_hand(d, tcp) -> bool:
+    """The robot's fingers hide an object's middle, so its silhouette is never whole: the object in
+    the robot's own hand counts as seen when its top shows, upright, just above the hand (where the
+    gripper's kinematics put it); its state then comes from the pixels above the fingers."""
+    if tcp is None or d.top is None or not d.inside or d.tilt >= MAX_TILT:
+        return False
+    above = d.top - np.asarray(tcp, float)
+    return bool(np.hypot(above[0], above[1]) < HELD_TOP_XY and HELD_TOP_Z[0] < above[2] < HELD_TOP_Z[1])
 
 
 def _unseen(name: str) -> ObjectPercept:
@@ -77,7 +89,7 @@ class Vision:
         self.last = det
         for name in ("bottle", "glass"):
             d = det.objects[name]
-            if not d.visible:
+            if not d.visible and not (robot_holding == name and _in_robot_hand(d, robot_tcp)):
                 op = _unseen(name)
             else:
                 state, conf = self._state(name, d, det.hand)

@@ -40,7 +40,7 @@ class SceneSpec:
     head: tuple[float, float]                 # pan, tilt (rad)
     posture: str = "none"
     target: str | None = None                 # object reached / grasped / pointed at
-    variant: str = "table"                    # grasp: "table", "lifted", "held_out"
+    variant: str = "table"                    # grasp: "table", "lifted", "held_out"; none: "rest", "home"
     jitter: tuple[float, float, float] = (0.0, 0.0, 0.0)
     reach_fraction: float = 0.6
     robot_holds: str | None = None            # object placed in the robot's gripper (tests)
@@ -110,6 +110,8 @@ class SceneSampler:
             variant = str(rng.choice(["table", "lifted", "held_out"])) if st != "inverted" else "table"
         if posture == "pointing":
             target = str(rng.choice(["bottle", "glass"]))
+        if posture == "none":   # resting where the behaviours put the hand, or where a seated person starts
+            variant = str(rng.choice(["rest", "home"]))
         jitter = tuple(float(v) for v in rng.uniform(-0.03, 0.03, 3))
         return SceneSpec(arr, head, posture, target, variant, jitter, float(rng.uniform(0.35, 0.75)))
 
@@ -284,6 +286,11 @@ def pose(world, spec: SceneSpec) -> Labels:
     elif spec.posture == "drink":
         _pose_drink(world, spec)
         in_hand = "glass"
+    elif spec.variant == "home":  # none: the hand about where the world starts it (a passive user's hand)
+        mujoco.mj_kinematics(m, d)
+        p = d.site_xpos[world.site_id["human_r_grasp"]] + jit * np.array([1.0, 1.0, 0.5])
+        _set_arm(world, p, d.site_xmat[world.site_id["human_r_grasp"]].reshape(3, 3).copy())
+        _set_fingers(world, "open")
     else:  # none: hand near the resting place
         p = REST + jit * np.array([1.0, 1.0, 0.5])
         _set_arm(world, p, grip_orientation("ag", p + np.array([0.2, 0, 0])))
