@@ -41,6 +41,7 @@ class RobotExecutor:
         self._speech_until = 0.0
         self.records: list[ActionRecord] = []
         self._percept: Percept | None = None
+        self._last_seen: dict[str, tuple[float, float]] = {}
 
     # -- what the robot knows of its own body ------------------------------------------------
     def holding(self) -> str | None:
@@ -61,6 +62,14 @@ class RobotExecutor:
         if o is None or not o.seen:
             return None
         return (o.position[0], o.position[1])
+
+    def _locate(self, obj: str | None):
+        """Where another object is (an obstacle to keep clear of, the glass to pour into): as seen
+        now, else where it was last seen (the robot's arm often hides what stands behind it)."""
+        xy = self._target_xy(obj)
+        if xy is not None or obj == self.holding():   # what is in the hand stands nowhere
+            return xy
+        return self._last_seen.get(obj)
 
     def _human_holds(self, obj: str | None) -> bool:
         p = self._percept
@@ -90,11 +99,16 @@ class RobotExecutor:
             return
         cls, obj = spec
         self.primitive = cls(self.robot, obj, human_holds=lambda o=obj: self._human_holds(o),
-                             locate=self._target_xy, stopper_removed=self._stopper_removed)
-        self.primitive.start(self._target_xy(obj))
+                             locate=self._locate, stopper_removed=self._stopper_removed)
+        # hidden right now (often behind the robot's own arm): start from where it was last seen;
+        # the gaze goes there and the target field takes over once the cameras see it again
+        self.primitive.start(self._locate(obj))
 
     def see(self, percept: Percept) -> None:
         self._percept = percept
+        for name, o in percept.objects.items():
+            if o.seen:
+                self._last_seen[name] = (o.position[0], o.position[1])
 
     def tick(self, t: float, dt: float) -> None:
         """One control tick: advance the primitive (or the speech act) and note how it ended."""

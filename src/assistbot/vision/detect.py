@@ -322,6 +322,8 @@ class Detector:
             for (a, b), X in zip(pairs, Xs):
                 if not (-0.05 < X[2] < 0.7 and -0.7 < X[0] < 0.3 and abs(X[1]) < 0.7):
                     continue      # not over the table: floor, background
+                if min(a.bbox[1], b.bbox[1]) <= 1:
+                    continue      # cut by the image's top: the face with the head tilted down (its centroid then misses the static spot)
                 if len(self.static_skin) and np.min(np.linalg.norm(self.static_skin - X, axis=1)) < STATIC_SKIN_R:
                     continue
                 if best is None or a.area > best[0].area:

@@ -232,7 +232,8 @@ def pose(world, spec: SceneSpec) -> Labels:
         if spec.variant == "lifted":
             base = base + np.array([0, 0, 0.07]) + np.array([jit[0], jit[1], 0])
         elif spec.variant == "held_out":
-            base = np.array([HOLD_OUT[0] - 0.06, HOLD_OUT[1] + jit[1], 0.88]) + np.array([jit[0], 0, 0.5 * jit[2]])
+            # where the person's hold-out behaviour puts an object's base (measured in episodes: ~1 cm past HOLD_OUT)
+            base = np.array([HOLD_OUT[0] + 0.01, HOLD_OUT[1] + jit[1], 0.88]) + np.array([jit[0], 0, 0.5 * jit[2]])
             held_out = True
         if spec.variant != "table":
             _move_free(world, o, base)
@@ -298,6 +299,7 @@ def pose(world, spec: SceneSpec) -> Labels:
     if spec.robot_holds:
         _robot_hold(world, spec.robot_holds)
     mujoco.mj_forward(m, d)
+    world.sync_liquid()
     return labels_of(world, spec, in_hand, held_out)
 
 

@@ -180,7 +180,7 @@ def _geom_labels(model: mujoco.MjModel) -> np.ndarray:
     for g in range(model.ngeom):
         body = model.body(model.geom_bodyid[g]).name
         root = model.body(model.body_rootid[model.geom_bodyid[g]]).name
-        if body.startswith("particle"):
+        if body.startswith("particle") or model.geom(g).name == "glass_visual_liquid":
             labels[g] = inv["liquid"]
         elif body in ("bottle", "stopper", "glass", "table"):
             labels[g] = inv[body]

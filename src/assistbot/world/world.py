@@ -22,9 +22,12 @@ import numpy as np
 from assistbot.errors import UserError
 from assistbot.world import layout
 from assistbot.world.arrangement import Arrangement
+from assistbot.world.state import _inside
 
 STOPPER_RELEASE_FORCE = 12.0   # N, pull-out force of the stopper's friction fit
 STOPPER_FORCE_TAU = 0.02       # s, low-pass time constant of the measured pull
+#: the rendered liquid's height in the glass with every particle inside (m), and its floor (the base's top)
+LIQUID_LEVEL_FULL = 0.07
 CHECK_EVERY = 5                # physics steps between checks of the stopper fit, the grip and the mouth
 GRASP_REACH = 0.03             # m, how far outside an object's surface the grasp site may be
 MOUTH_RADIUS = 0.04            # m, a particle this close to the mouth site is drunk
@@ -116,6 +119,7 @@ class World:
         self._hand_qadr = np.array([m.jnt_qposadr[m.joint(j).id] for j in _CLOSED_MIN])
         self._hand_min = np.array(list(_CLOSED_MIN.values()))
         self._eq_rows_cache: tuple[int, np.ndarray] | None = None
+        self._liquid_geom = m.geom("glass_visual_liquid").id
         self.reset()
 
     # ---------------------------------------------------------------- setup
@@ -162,6 +166,7 @@ class World:
         self._stopper_pull = 0.0
         self._since_check = 0
         mujoco.mj_forward(m, d)
+        self.sync_liquid()
 
     def _set_free(self, body: str, pos, quat) -> None:
         m = self.model
@@ -220,6 +225,19 @@ class World:
                 self._since_check = 0
                 self._check()
 
+    def sync_liquid(self) -> None:
+        """Set the rendered liquid level in the glass from the particles inside it (see objects.xml)."""
+        m, d = self.model, self.data
+        gb = self.body_id["glass"]
+        pts = d.xpos[self.particle_bodies]
+        inside = _inside(pts, d.xpos[gb], d.xmat[gb].reshape(3, 3), layout.GLASS_INNER_RADIUS + 0.002, 0.0,
+                         layout.GLASS_HEIGHT + 0.005) & ~self.drunk
+        h = LIQUID_LEVEL_FULL * float(inside.sum()) / max(1, len(pts))
+        g = self._liquid_geom
+        m.geom_size[g, 1] = max(0.5 * h, 5e-4)
+        m.geom_pos[g, 2] = layout.GLASS_BASE_TOP + 0.5 * h
+        m.geom_rgba[g, 3] = 1.0 if h > 0.002 else 0.0
+
     def _check(self) -> None:
         d = self.data
         if d.eq_active[self.eq_stopper]:
@@ -230,6 +248,7 @@ class World:
         if d.eq_active[self._eq_hold_ids].any() and not self.hand_closed():
             self.human_release()
         self._drink()
+        self.sync_liquid()
 
     def stopper_pull_force(self) -> float:
         """The stopper fit's constraint force along the bottle's axis, pulling the stopper out (N)."""
