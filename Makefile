@@ -28,9 +28,8 @@ debs:
 
 # The main job: the seed's Fig. 3-4 storyline as one episode, to render/paper-fig3-4/video.mp4.
 # `assistbot run` exits 1 when the person did not drink; the demo still shows what happened.
-# oracle: the labelled ground-truth perception (every output says so). With vision the robot does not
-# yet complete this storyline: it misjudges where a held-out bottle is (see the open vision issue).
-PERCEPTION ?= oracle
+# vision: the robot sees through its head cameras; PERCEPTION=oracle reads ground truth (labelled as such).
+PERCEPTION ?= vision
 demo: $(STAMP)
 	$(BIN)/assistbot run paper-fig3-4 --perception $(PERCEPTION) || [ $$? -eq 1 ]
 

@@ -258,14 +258,24 @@ def test_request_holds_open_hand_near_middle_line(target, arrangement):
 
     w, robot = make(*arrangement)
     prim = P.Request(robot, "glass", locate=lambda name: body_xy(w, name)())
-    pr, s = run(w, prim, lambda: target, seconds=10.0)
+    shown = []
+
+    def watch(t):
+        if prim.progress.phase == "show the open hand":
+            site = w.model.site("robot_palm_face").id
+            normal = -w.data.site_xmat[site].reshape(3, 3)[:, 0]
+            shown.append((w.data.site_xpos[site].copy(), robot.gripper.finger_angles().max(), normal[2], see_robot(w).requests))
+
+    pr, s = run(w, prim, lambda: target, seconds=15.0, each_tick=watch)
     assert pr.status is Status.SUCCEEDED, pr.reason
-    palm = w.data.site_xpos[w.model.site("robot_palm_face").id]
+    assert len(shown) * CONTROL_DT >= 0.9 * P.Request.SHOW_SECONDS
+    palm, fingers, normal_z, requests = shown[-1]
     assert abs(palm[0]) < 0.15
-    assert robot.gripper.finger_angles().max() < 0.2  # open
-    normal = -w.data.site_xmat[w.model.site("robot_palm_face").id].reshape(3, 3)[:, 0]
-    assert normal[2] > 0.8  # palm up
-    assert see_robot(w).requests  # what the human sees: an open empty hand held out
+    assert fingers < 0.2  # open
+    assert normal_z > 0.8  # palm up
+    assert requests  # what the human sees: an open empty hand held out
+    # then withdrawn: the robot's own cameras see past it again
+    assert w.data.site_xpos[w.model.site("robot_palm_face").id][0] > 0.2
     assert_safe(s)
 
 

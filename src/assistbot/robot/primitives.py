@@ -577,7 +577,8 @@ class Retract(Primitive):
 
 
 class Request(Primitive):
-    """Hold an open hand out, palm up, near the middle line toward the target object's side (a request).
+    """Hold an open hand out, palm up, near the middle line toward the target object's side (a request),
+    for SHOW_SECONDS, then withdraw it.
 
     The palm faces up and toward the human (its normal 60 deg above the horizontal): a fully
     upturned palm puts the wrist pitch at its limit on the robot's far (-y) side. The hand
@@ -586,6 +587,7 @@ class Request(Primitive):
 
     name = "request"
     HEIGHT = 0.20  # above the table
+    SHOW_SECONDS = 2.0
     PALM_UP = math.radians(60)
     Y_RANGE = (-0.12, 0.30)
 
@@ -614,7 +616,10 @@ class Request(Primitive):
             rot = poses.side_rotation(pos, p.robot.shoulder) @ mink.SO3.from_y_radians(self.PALM_UP)
             return poses.pose(rot, pos)
         self._request_y = None
-        return [_Open("open"), Move("hold out open hand", goal, duration=2.0, tolerance=0.03)]
+        # a gesture: shown, then withdrawn, so that the hand does not hide from the robot's own
+        # cameras the object the person now holds out toward it
+        return [_Open("open"), Move("hold out open hand", goal, duration=2.0, tolerance=0.03),
+                Wait("show the open hand", self.SHOW_SECONDS), *_retract()]
 
 
 class PlaceInRWS(Primitive):
