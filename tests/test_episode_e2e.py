@@ -19,7 +19,7 @@ import pytest
 from assistbot.episode import run_scenario
 from assistbot.scenario import load_scenario
 
-from _closed_loop_checks import check_fig3_4
+from _closed_loop_checks import check_fig3_4, check_fig5
 
 pytestmark = pytest.mark.slow
 
@@ -33,6 +33,12 @@ def test_paper_fig3_4_with_vision_ends_with_the_drink_in_the_seeds_order():
     r = episode("paper-fig3-4")
     assert r.perception == "vision"
     check_fig3_4(r)
+
+
+def test_paper_fig5_passive_user_with_vision():
+    r = episode("paper-fig5")
+    assert r.perception == "vision"
+    check_fig5(r)
 
 
 def short(name: str, seconds: float):

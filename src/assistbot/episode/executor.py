@@ -57,7 +57,12 @@ class RobotExecutor:
         if p is None or obj is None:
             return None
         if obj == "held_out":
-            return tuple(p.hand.position[:2]) if p.hand.seen else None
+            if not p.hand.seen:
+                return None
+            held = p.objects.get(p.hand.object_in_hand) if p.hand.object_in_hand else None
+            if held is not None and held.seen:   # grasp the object itself, placed better than the hand
+                return (held.position[0], held.position[1])
+            return tuple(p.hand.position[:2])
         o = p.objects.get(obj)
         if o is None or not o.seen:
             return None

@@ -46,6 +46,7 @@ CENTROID_Z = {"bottle": 0.085, "glass": 0.05}
 HEIGHT = {"bottle": 0.194, "glass": 0.10}   # the bottle without its (red) stopper
 CROP = {"glass": (16, 20), "hand": (24, 24)}   # template sizes (w, h)
 ON_TABLE_TOL = 0.03
+FACE_Z = 0.40              # m above the table: skin higher than this is the face, not the working hand
 STATIC_SKIN_R = 0.08       # m: skin this close to a calibrated static spot is not the working hand
 HAND_REACH = 0.10          # m: hand crop half-size
 _B, _S, _G, _L, _K, _T = (LABEL[p] for p in ("bottle", "stopper", "glass", "liquid", "skin", "shirt"))
@@ -175,6 +176,18 @@ class _Roi:
         if rows.size:
             self.h_capped = float(self.bot_r - min(self.top_r, int(rows[0])) + 1)
 
+    def upright_tilt(self) -> float:
+        """The silhouette's tilt from the image vertical: of its axis (the line through its full-width
+        rows' middles) when it is taller than wide, which fingers draped over an upright object's top
+        cut into strips that skew its moments; else of its moments' main axis (a lying object)."""
+        if self.h < self.w:
+            return self.tilt
+        v, u = self.axis()
+        if v.size < AXIS_ROWS:
+            return self.tilt
+        slope = np.polyfit(v.astype(float), u, 1)[0]
+        return float(np.arctan(abs(slope)))
+
     def axis(self) -> tuple[np.ndarray, np.ndarray]:
         """(rows, mid-columns), absolute pixels, of the rows that show the silhouette's full width: there
         the middle of the two edges is an upright cylinder's axis, wherever a hand or fingers cover its
@@ -272,7 +285,7 @@ class Detector:
             extent = min(extent, roi.h_capped / max(eh, 1.0), roi.w / max(ew, 1.0))
             x, y, w, h = bb.bbox
             inside &= x > 1 and y > 1 and x + w < W - 1 and y + h < H - 1
-        tilt = max(roi.tilt for roi in rois)
+        tilt = max(roi.upright_tilt() for roi in rois)
         # standing on the table and whole; a lifted one is decided once the hand is known (`_held`)
         visible = bool(inside and on_table and MIN_EXTENT <= extent <= MAX_EXTENT and tilt < MAX_TILT)
         det = ObjectDetection(name, visible, pos, (a, b), extent=float(extent), tilt=float(tilt), top=Xt)
@@ -322,6 +335,8 @@ class Detector:
             for (a, b), X in zip(pairs, Xs):
                 if not (-0.05 < X[2] < 0.7 and -0.7 < X[0] < 0.3 and abs(X[1]) < 0.7):
                     continue      # not over the table: floor, background
+                if X[2] > FACE_Z:
+                    continue      # the face (a hand at the mouth merges with it: the drink is read from the glass)
                 if min(a.bbox[1], b.bbox[1]) <= 1:
                     continue      # cut by the image's top: the face with the head tilted down (its centroid then misses the static spot)
                 if len(self.static_skin) and np.min(np.linalg.norm(self.static_skin - X, axis=1)) < STATIC_SKIN_R:
