@@ -25,7 +25,7 @@ from assistbot.cognition.percept import HandPercept, ObjectPercept, Percept
 from assistbot.task import OBJECT_STATES
 from assistbot.vision import library
 from assistbot.vision.capture import StereoFrame
-from assistbot.vision.detect import MAX_TILT, Detections, Detector
+from assistbot.vision.detect import CENTROID_Z, HELD_DIST, MAX_TILT, Detections, Detector
 from assistbot.world.layout import zone_of
 
 HELD_OUT_X = -0.20          # a raised hand beyond this x (toward the robot) is held out
@@ -113,6 +113,9 @@ class Vision:
         state, conf, _ = self.classifiers[name].classify(d.crop, d.feat)
         if name == "bottle":
             hand_at_top = bool(hand.visible and np.linalg.norm(hand.position - (d.position + [0, 0, 0.19])) < HAND_AT_TOP)
+            # lifted in the person's hand: a grip from above covers the stopper wherever vision puts the hand
+            hand_at_top |= bool(hand.visible and not d.on_table
+                                and np.linalg.norm(hand.position - (d.position + [0, 0, CENTROID_Z["bottle"]])) < HELD_DIST)
             both = min(d.stopper) >= STOPPER_SEEN
             one = max(d.stopper) >= STOPPER_SEEN
             if both:
