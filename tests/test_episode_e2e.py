@@ -1,8 +1,9 @@
-"""The closed loop end to end with VISION: cognition sees only what the robot's head cameras show.
+"""The closed loop end to end: the seed's experiments as whole episodes, with VISION (cognition sees
+only what the robot's head cameras show) and with the labelled ORACLE perception (ground truth,
+which isolates physics + cognition + robot + human from vision).
 
-The seed's experiments must play out as with the oracle (tests/test_episode_closed_loop.py);
-the same seed must give the same decisions; `assistbot run` must write a playable video with
-the utterances as sound. Slow: run by .ci/run and `make test-all`.
+The same seed must give the same decisions; `assistbot run` must write a playable video with the
+utterances as sound. Slow: run by .ci/run and `make test-all`.
 """
 
 from __future__ import annotations
@@ -19,26 +20,67 @@ import pytest
 from assistbot.episode import run_scenario
 from assistbot.scenario import load_scenario
 
-from _closed_loop_checks import check_fig3_4, check_fig5
-
 pytestmark = pytest.mark.slow
+PERCEPTIONS = ["vision", "oracle"]
 
 
 @lru_cache(maxsize=None)
-def episode(name: str):
-    return run_scenario(name, perception="vision", video=False)
+def episode(name: str, perception: str):
+    r = run_scenario(name, perception=perception, video=False)
+    assert r.perception == perception
+    return r
 
 
-def test_paper_fig3_4_with_vision_ends_with_the_drink_in_the_seeds_order():
-    r = episode("paper-fig3-4")
-    assert r.perception == "vision"
-    check_fig3_4(r)
+def in_order(seq: list[str], wanted: list[str]) -> bool:
+    it = iter(seq)
+    return all(any(x == w for x in it) for w in wanted)
 
 
-def test_paper_fig5_passive_user_with_vision():
-    r = episode("paper-fig5")
-    assert r.perception == "vision"
-    check_fig5(r)
+def check_fig3_4(r) -> None:
+    """SG grasp -> error; robot holds, human removes the stopper; A6 (never A7); fill; hand over; drink."""
+    decisions = [a for _, a in r.decisions]
+    assert r.success, (r.end_reason, decisions, r.actions)
+    assert in_order(decisions, ["Communicate-Error", "Grasp-hold-bottle-to-remove-cup", "Reach-and-turn-glass",
+                                "Reach-grasp-open-bottle-fill-glass", "Reach-full-glass-to-hand-over"]), decisions
+    assert "Reach-turn-and-hand-over-glass" not in decisions  # A6 wins over A7: the open bottle is in the RWS
+    spoken = {u["source"] for u in r.utterances}
+    for action in ("Communicate-Error", "Grasp-hold-bottle-to-remove-cup", "Reach-and-turn-glass",
+                   "Reach-grasp-open-bottle-fill-glass", "Reach-full-glass-to-hand-over"):
+        assert f"AEL:{action}" in spoken, action
+    events = [e["event"] for e in r.world_events]
+    # the physical story: stopper off while the robot holds the bottle, glass turned, then filled, then drunk
+    assert in_order(events, ["stopper_removed", "glass_turned", "glass_filled", "drink"]), events
+    removed = next(e for e in r.world_events if e["event"] == "stopper_removed")
+    assert removed["robot_holds"] == "bottle"
+    assert r.min_distance_human >= 0.05
+    assert r.spilled_fraction < 0.10
+
+
+def check_fig5(r) -> None:
+    """A passive person: hold for the stopper, request the glass (not hand over the bottle), fill, hand over, drink."""
+    decisions = [a for _, a in r.decisions]
+    assert r.success, (r.end_reason, decisions, r.actions)
+    assert in_order(decisions, ["Grasp-hold-bottle-to-remove-cup", "Request-glass",
+                                "Reach-grasp-open-bottle-fill-glass", "Reach-full-glass-to-hand-over"]), decisions
+    assert "Hand-over-bottle" not in decisions[: decisions.index("Request-glass")]
+    # the passive person starts nothing before the robot first speaks to them
+    first_said = min(u["t"] for u in r.utterances if u["source"].startswith("AEL:"))
+    starts = [e for e in r.human_events if e["kind"] == "start"]
+    assert starts and all(e["t"] > first_said for e in starts)
+    events = [e["event"] for e in r.world_events]
+    assert in_order(events, ["stopper_removed", "glass_filled", "drink"]), events
+    assert r.min_distance_human >= 0.05
+    assert r.spilled_fraction < 0.10
+
+
+@pytest.mark.parametrize("perception", PERCEPTIONS)
+def test_paper_fig3_4_ends_with_the_drink_in_the_seeds_order(perception):
+    check_fig3_4(episode("paper-fig3-4", perception))
+
+
+@pytest.mark.parametrize("perception", PERCEPTIONS)
+def test_paper_fig5_passive_user(perception):
+    check_fig5(episode("paper-fig5", perception))
 
 
 def short(name: str, seconds: float):
