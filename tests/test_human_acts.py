@@ -169,9 +169,9 @@ def test_hand_to_robot(obj, grip, where):
     assert st.objects[obj].pos[0] > 0.1                       # the stand-in carried it into the RWS
 
 
-@pytest.mark.parametrize("obj,at", [("glass", (0.0, -0.05, 0.78)), ("bottle", (-0.02, 0.05, 0.80))])
-def test_take_from_robot(obj, at):
-    w, s, hc = _setup(_arr({"zone": "RWS", "state": "open"}, {"zone": "RWS", "state": "empty"}))
+@pytest.mark.parametrize("obj,at,glass_zone", [("glass", (0.0, -0.05, 0.78), "RWS"), ("bottle", (-0.02, 0.05, 0.80), "HWS")])
+def test_take_from_robot(obj, at, glass_zone):
+    w, s, hc = _setup(_arr({"zone": "RWS", "state": "open"}, {"zone": glass_zone, "state": "empty"}))
     s.grasp_at(obj)
     s.release_when_taken = True
     hc.run(0.02, robot=s.tick)
@@ -183,6 +183,21 @@ def test_take_from_robot(obj, at):
     st = w.state()
     assert st.human_holds == obj and s.holds() is None and st.objects[obj].pos[0] < -0.15
     assert watch.x_max <= HANDOVER_X_MAX                      # the hand stayed in the hand-over zone
+
+
+def test_handed_the_bottle_with_the_glass_out_of_reach_puts_it_down_on_his_side():
+    """He cannot pour into a glass in the robot's workspace: he does not hold the bottle for ever."""
+    w, s, hc = _setup(_arr({"zone": "RWS", "state": "open"}, {"zone": "RWS", "state": "empty"}))
+    s.grasp_at("bottle")
+    s.release_when_taken = True
+    hc.run(0.02, robot=s.tick)
+    s.carry_to((-0.02, 0.05, 0.80))
+    hc.start("take_from_robot", object="bottle")
+    hc.run(20.0, robot=s.tick)
+    done = [(e.what, e.kind) for e in hc.events() if e.kind in ("success", "failure")]
+    assert done[:2] == [("take_from_robot", "success"), ("put_down", "success")], done
+    st = w.state()
+    assert st.human_holds is None and st.objects["bottle"].upright and st.objects["bottle"].pos[0] < 0
 
 
 @pytest.mark.parametrize("where", [(0.15, -0.05), (0.15, 0.10)])

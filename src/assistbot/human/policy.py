@@ -60,9 +60,13 @@ def response_to_sight(c, key: str) -> list[tuple[str, dict]]:
 def follow_up(c, done) -> list[tuple[str, dict]]:
     """What every partner does next after a behaviour of his succeeded (passive ones too).
 
-    Holding a full glass he was handed, he drinks from it."""
+    Holding a full glass he was handed, he drinks from it. Handed the bottle while the glass is out
+    of his reach (in the robot's workspace), he cannot pour: he puts the bottle down on his side,
+    where the robot can take it again, rather than hold it for ever."""
     if done.name == "take_from_robot" and c.world.human_holding() == "glass" and c.world.state().glass_state == "full":
         return [("drink", {})]
+    if done.name == "take_from_robot" and c.world.human_holding() == "bottle" and _scene(c)["glass_x"] > 0:
+        return [("put_down", {"object": "bottle"})]
     return []
 
 
