@@ -322,6 +322,8 @@ class Primitive:
 # geometry of the objects (body origin at the bottom centre)
 GRASP_HEIGHT = {"glass": 0.05, "bottle": 0.08, "held_out": 0.06}
 RADIUS = {"glass": 0.040, "bottle": 0.035, "held_out": 0.0375}
+#: how far (m) beyond REACH a grasp point may lie and still be grasped, short of the hand's middle
+REACH_SLACK = 0.025
 TCP_CYLINDER_RADIUS = 0.035  # the TCP is the centre of a 70 mm cylinder touching the palm
 LIFT = 0.12
 #: the bottle's mouth above its grasp point (m): 0.194 - 0.08
@@ -348,6 +350,12 @@ def _grasp_pose_at(prim: Primitive, centre: np.ndarray, obj: str, back: float = 
     rot = poses.side_rotation(centre, prim.robot.shoulder)
     ax = poses.approach_axis(rot)
     pos = centre - ax * (RADIUS[obj] - TCP_CYLINDER_RADIUS + back)
+    to = pos - prim.robot.shoulder
+    dist = float(np.linalg.norm(to))
+    if REACH < dist <= REACH + REACH_SLACK:
+        # just beyond the arm's reach (an object held out at the person's own limit): stop short along the
+        # approach; the object then sits nearer the fingertips of the open hand (94 mm), which still close on it
+        pos = pos - ax * (dist - REACH + 0.003) / max(0.3, float(ax @ to) / dist)
     return poses.pose(rot @ mink.SO3.from_x_radians(roll), pos)
 
 
