@@ -83,6 +83,29 @@ def test_paper_fig5_passive_user(perception):
     check_fig5(episode("paper-fig5", perception))
 
 
+OTHER_SCENARIOS = [
+    "active-closed-bottle-hws", "active-inverted-glass-hws", "active-open-bottle-hws", "fig4-fill-and-hand-over",
+    pytest.param("slow-open-bottle-rws", marks=pytest.mark.xfail(
+        strict=True, reason="known: the robot's arm knocks the standing bottle over after receiving the glass "
+                            "(also with the oracle); see the closed-loop issue")),
+]
+
+
+@pytest.mark.parametrize("name", OTHER_SCENARIOS)
+def test_every_other_shipped_scenario_ends_with_the_drink_with_vision(name):
+    r = episode(name, "vision")
+    assert r.success, (r.end_reason, [a for _, a in r.decisions], r.actions)
+    assert r.min_distance_human >= 0.05
+    assert r.spilled_fraction < 0.10
+
+
+def test_the_shipped_scenarios_are_the_ones_tested():
+    from assistbot.scenario import shipped_scenarios
+
+    tested = {"paper-fig3-4", "paper-fig5"} | {p if isinstance(p, str) else p.values[0] for p in OTHER_SCENARIOS}
+    assert {p.stem for p in shipped_scenarios()} == tested
+
+
 def short(name: str, seconds: float):
     return dataclasses.replace(load_scenario(name), time_limit=seconds)
 

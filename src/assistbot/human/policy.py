@@ -14,6 +14,10 @@ from assistbot.task.drinking import TAG_RESPONSES
 UNINTERRUPTIBLE = ("pull_stopper", "drink", "put_down", "turn_glass", "take_from_robot", "hand_to_robot")
 
 
+#: the grasp site beyond this x (toward the robot) holds an object out (the hold-out point is at x = -0.05)
+HELD_OUT_X = -0.20
+
+
 def _scene(c) -> dict:
     w = c.world
     d = w.data
@@ -35,7 +39,11 @@ def response_to_tag(c, tag: str) -> list[tuple[str, dict]]:
     if kind == "remove_stopper":
         out = []
         handing_over = c.current is not None and c.current.name == "hand_to_robot"
-        if holding is not None and not handing_over:
+        held_out = holding == "bottle" and c.world.site_pos("human_r_grasp")[0] > HELD_OUT_X
+        if held_out and not handing_over:
+            # the robot is coming for the bottle he holds out: he keeps it there until the robot has it
+            out.append(("hand_to_robot", {"object": "bottle"}))
+        elif holding is not None and not handing_over:
             out.append(("put_down", {}))
         return out + [("pull_stopper", {"wait_for_robot": 30.0})]
     if kind == "take_object":

@@ -648,9 +648,10 @@ class HoldBottleForStopper(Primitive):
     """Grasp the closed bottle, hold it out upright near the middle line where the human can pull the
     stopper, keep it there until ``stopper_removed()`` (perception), put it back where it stood, let go.
 
-    A bottle seen in the HWS (target x < 0) can only be one the human holds out: the robot grasps it
-    at the human's hold-out height, waits until the human's hand lets go (``human_holds()``), and
-    afterwards puts it down at a free place in the RWS (`free_rws_spot`). The grip holds the bottle by friction against
+    A bottle seen in the HWS (target x < 0) is one the human holds out (``human_holds()``): the robot
+    grasps it at the human's hold-out height and waits until the human's hand lets go; or one the
+    human put down near the line: grasped from the table. Either way it is afterwards put down at a
+    free place in the RWS (`free_rws_spot`). The grip holds the bottle by friction against
     the pull; the world decides when the fit gives."""
 
     name = "hold_bottle_for_stopper"
@@ -675,6 +676,15 @@ class HoldBottleForStopper(Primitive):
                     "the stopper was not removed"),
             Wait("settle", 0.3),
         ]
+        if self.xy()[0] < 0.0 and not self.human_holds():
+            # standing on the person's side, put down there for the robot: from the table, back to the RWS
+            return _reach_and_grasp(self) + [
+                _FreezeXY(),
+                Move("lift", lambda p: _side_grasp_pose(p, up=LIFT), duration=1.2),
+                *hold,
+                *_put_down_at(lambda p: p._home()),
+                *_retract(),
+            ]
         if self.xy()[0] < 0.0:  # held out by the human
             return _reach_and_grasp(self, base_z=HUMAN_HOLD_OUT_BASE_Z) + [
                 Wait("hold", 1.5),
