@@ -26,7 +26,7 @@ from assistbot.world.state import _inside
 
 STOPPER_RELEASE_FORCE = 12.0   # N, pull-out force of the stopper's friction fit
 STOPPER_FORCE_TAU = 0.02       # s, low-pass time constant of the measured pull
-#: the rendered liquid's height in the glass with every particle inside (m), and its floor (the base's top)
+#: the rendered liquid's height in the glass (m) with every particle inside it
 LIQUID_LEVEL_FULL = 0.07
 CHECK_EVERY = 5                # physics steps between checks of the stopper fit, the grip and the mouth
 GRASP_REACH = 0.03             # m, how far outside an object's surface the grasp site may be
