@@ -110,7 +110,7 @@ def short(name: str, seconds: float):
     return dataclasses.replace(load_scenario(name), time_limit=seconds)
 
 
-def test_same_seed_same_decisions_and_percepts_with_vision():
+def test_same_seed_same_decisions_utterances_and_events_with_vision():
     a = run_scenario(short("paper-fig3-4", 20.0), perception="vision", video=False)
     b = run_scenario(short("paper-fig3-4", 20.0), perception="vision", video=False)
     assert a.decisions and a.decisions == b.decisions
@@ -118,7 +118,7 @@ def test_same_seed_same_decisions_and_percepts_with_vision():
     assert a.world_events == b.world_events
 
 
-def test_run_writes_a_playable_video_with_the_overlay_and_speech(tmp_path):
+def test_run_writes_a_playable_video_with_speech(tmp_path):
     out = tmp_path / "run"
     p = subprocess.run([str(Path(sys.executable).parent / "assistbot"), "run", str(_short_file(tmp_path)), "--out", str(out)],
                        capture_output=True, text=True, timeout=600)
