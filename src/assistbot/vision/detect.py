@@ -165,6 +165,7 @@ class _Roi:
                 self.tilt = float(np.arccos(min(1.0, abs(vy) / np.hypot(vx, vy))))
         self.area = float(n)
         self.h_capped = self.h
+        self._axis: tuple[np.ndarray, np.ndarray] | None = None
 
     def cap(self, part: int) -> None:
         """Count pixels of ``part`` right on top of the silhouette (a stopper in the bottle's neck, which
@@ -191,7 +192,9 @@ class _Roi:
     def axis(self) -> tuple[np.ndarray, np.ndarray]:
         """(rows, mid-columns), absolute pixels, of the rows that show the silhouette's full width: there
         the middle of the two edges is an upright cylinder's axis, wherever a hand or fingers cover its
-        top, bottom or part of a side (which the silhouette's centroid is not)."""
+        top, bottom or part of a side (which the silhouette's centroid is not).  Computed once."""
+        if self._axis is not None:
+            return self._axis
         m = self.mask
         rows = np.flatnonzero(m.any(axis=1))
         sub = m[rows]
@@ -200,7 +203,8 @@ class _Roi:
         width = last - first + 1
         full = np.percentile(width, 80)
         ok = np.abs(width - full) <= max(1.5, 0.12 * full)
-        return self.y0 + rows[ok], self.x0 + 0.5 * (first[ok] + last[ok]) + 0.5
+        self._axis = (self.y0 + rows[ok], self.x0 + 0.5 * (first[ok] + last[ok]) + 0.5)
+        return self._axis
 
 
 class Detector:

@@ -61,6 +61,12 @@ def _inside(points: np.ndarray, pos: np.ndarray, R: np.ndarray, radius: float, z
     return (np.hypot(local[:, 0], local[:, 1]) < radius) & (local[:, 2] > z0) & (local[:, 2] < z1)
 
 
+def in_glass_region(world, pts: np.ndarray) -> np.ndarray:
+    """Which of the points (world frame) lie inside the glass (its inner cylinder, rim included)."""
+    d, gb = world.data, world.body_id["glass"]
+    return _inside(pts, d.xpos[gb], d.xmat[gb].reshape(3, 3), layout.GLASS_INNER_RADIUS + 0.002, 0.0, layout.GLASS_HEIGHT + 0.005)
+
+
 def world_state(world) -> WorldState:
     d = world.data
     robot = world.robot_holding()
@@ -74,9 +80,9 @@ def world_state(world) -> WorldState:
         objects[name] = ObjectState(name, tuple(pos), tuple(d.xquat[b]), layout.zone_of(pos[0]), axis_z > 0.707, axis_z < -0.707, held)
     pts = d.xpos[world.particle_bodies]
     alive = ~world.drunk
-    bb, gb = world.body_id["bottle"], world.body_id["glass"]
+    bb = world.body_id["bottle"]
     in_bottle = _inside(pts, d.xpos[bb], d.xmat[bb].reshape(3, 3), layout.BOTTLE_INNER_RADIUS + 0.002, 0.0, layout.BOTTLE_MOUTH_Z + 0.005) & alive
-    in_glass = _inside(pts, d.xpos[gb], d.xmat[gb].reshape(3, 3), layout.GLASS_INNER_RADIUS + 0.002, 0.0, layout.GLASS_HEIGHT + 0.005) & alive & ~in_bottle
+    in_glass = in_glass_region(world, pts) & alive & ~in_bottle
     mouth = d.site_xpos[world.site_id["human_mouth"]]
     near_mouth = int(np.sum((np.linalg.norm(pts - mouth, axis=1) < 0.08) & alive))
     total = len(pts)

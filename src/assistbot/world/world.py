@@ -22,7 +22,7 @@ import numpy as np
 from assistbot.errors import UserError
 from assistbot.world import layout
 from assistbot.world.arrangement import Arrangement
-from assistbot.world.state import _inside
+from assistbot.world.state import in_glass_region
 
 STOPPER_RELEASE_FORCE = 12.0   # N, pull-out force of the stopper's friction fit
 STOPPER_FORCE_TAU = 0.02       # s, low-pass time constant of the measured pull
@@ -227,11 +227,9 @@ class World:
 
     def sync_liquid(self) -> None:
         """Set the rendered liquid level in the glass from the particles inside it (see objects.xml)."""
-        m, d = self.model, self.data
-        gb = self.body_id["glass"]
-        pts = d.xpos[self.particle_bodies]
-        inside = _inside(pts, d.xpos[gb], d.xmat[gb].reshape(3, 3), layout.GLASS_INNER_RADIUS + 0.002, 0.0,
-                         layout.GLASS_HEIGHT + 0.005) & ~self.drunk
+        m = self.model
+        pts = self.data.xpos[self.particle_bodies]
+        inside = in_glass_region(self, pts) & ~self.drunk
         h = LIQUID_LEVEL_FULL * float(inside.sum()) / max(1, len(pts))
         g = self._liquid_geom
         m.geom_size[g, 1] = max(0.5 * h, 5e-4)
