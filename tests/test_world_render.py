@@ -50,3 +50,22 @@ def test_cli_snapshot_and_errors(tmp_path, capsys):
     assert main(["view", "--png", str(bad)]) == 2
     err = capsys.readouterr().err.strip().splitlines()
     assert len(err) == 1 and err[0].startswith(f"error: {bad}: objects.bottle.position: ")
+
+
+@pytest.mark.parametrize("camera", CAMERAS)
+def test_particles_left_out_of_the_scene_are_ones_no_camera_sees(renderer_and_worlds, camera):
+    # world 0: liquid in a full glass under its rendered surface; world 1: in a closed bottle
+    r, worlds = renderer_and_worlds
+    for w in worlds:
+        w.step(50)
+        m, geoms = w.model, w.particle_geoms
+        left_out = m.geom_rgba[geoms, 3] == 0
+        assert left_out.sum() >= len(geoms) // 2
+        shown = r.rgb(w.data, camera)
+        saved = m.geom_rgba[geoms, 3].copy()
+        m.geom_rgba[geoms, 3] = w._particle_alpha
+        try:
+            every_particle = r.rgb(w.data, camera)
+        finally:
+            m.geom_rgba[geoms, 3] = saved
+        assert np.array_equal(shown, every_particle)

@@ -139,19 +139,27 @@ class Episode:
         self.last_decision = None
 
     # -- safety measure: robot to the human's head and torso --------------------------------------
-    def _robot_human_pairs(self) -> list[tuple[int, int]]:
+    def _robot_human_pairs(self) -> tuple[np.ndarray, np.ndarray]:
         m = self.world.model
         robot_bodies = {i for i in range(m.nbody) if m.body(i).name.startswith("robot_")}
         human_parts = {i for i in range(m.nbody) if m.body(i).name in ("human_body", "human_head", "human_torso")}
         rg = [g for g in range(m.ngeom) if m.geom_bodyid[g] in robot_bodies]
         hg = [g for g in range(m.ngeom) if m.geom_bodyid[g] in human_parts]
-        return [(a, b) for a in rg for b in hg]
+        pairs = np.array([(a, b) for a in rg for b in hg], dtype=int).reshape(-1, 2)
+        return pairs[:, 0], pairs[:, 1]
 
     def _distance_to_human(self) -> float:
+        """Smallest robot-to-head/torso surface distance.  Pairs are tried nearest bounding
+        spheres first and the search stops once no remaining pair can be closer, so the
+        exact distance costs a few geometry queries instead of one per pair."""
         m, d = self.world.model, self.world.data
+        a, b = self._distance_pairs
+        bound = np.linalg.norm(d.geom_xpos[a] - d.geom_xpos[b], axis=1) - m.geom_rbound[a] - m.geom_rbound[b]
         best = math.inf
-        for a, b in self._distance_pairs:
-            best = min(best, mujoco.mj_geomDistance(m, d, a, b, 2.0, None))
+        for k in np.argsort(bound):
+            if bound[k] >= best:
+                break
+            best = min(best, mujoco.mj_geomDistance(m, d, int(a[k]), int(b[k]), 2.0, None))
         return best
 
     # -- world events ------------------------------------------------------------------------------

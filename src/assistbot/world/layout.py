@@ -27,6 +27,7 @@ BOTTLE_RADIUS = 0.035
 BOTTLE_INNER_RADIUS = 0.029
 BOTTLE_BASE_TOP = 0.006        # inner floor height in the bottle frame
 BOTTLE_MOUTH_Z = 0.194         # top of the neck (the stopper body's origin when closed)
+BOTTLE_BODY_TOP = 0.128        # top of the full-width body, where the shoulder starts
 GLASS_RADIUS = 0.040
 GLASS_INNER_RADIUS = 0.035
 GLASS_BASE_TOP = 0.008

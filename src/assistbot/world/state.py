@@ -56,7 +56,7 @@ class WorldState:
                 f"robot holds {self.robot_holds}, human holds {self.human_holds}")
 
 
-def _inside(points: np.ndarray, pos: np.ndarray, R: np.ndarray, radius: float, z0: float, z1: float) -> np.ndarray:
+def in_cylinder(points: np.ndarray, pos: np.ndarray, R: np.ndarray, radius: float, z0: float, z1: float) -> np.ndarray:
     local = (points - pos) @ R  # R columns are the body axes
     return (np.hypot(local[:, 0], local[:, 1]) < radius) & (local[:, 2] > z0) & (local[:, 2] < z1)
 
@@ -64,7 +64,7 @@ def _inside(points: np.ndarray, pos: np.ndarray, R: np.ndarray, radius: float, z
 def in_glass_region(world, pts: np.ndarray) -> np.ndarray:
     """Which of the points (world frame) lie inside the glass (its inner cylinder, rim included)."""
     d, gb = world.data, world.body_id["glass"]
-    return _inside(pts, d.xpos[gb], d.xmat[gb].reshape(3, 3), layout.GLASS_INNER_RADIUS + 0.002, 0.0, layout.GLASS_HEIGHT + 0.005)
+    return in_cylinder(pts, d.xpos[gb], d.xmat[gb].reshape(3, 3), layout.GLASS_INNER_RADIUS + 0.002, 0.0, layout.GLASS_HEIGHT + 0.005)
 
 
 def world_state(world) -> WorldState:
@@ -81,7 +81,7 @@ def world_state(world) -> WorldState:
     pts = d.xpos[world.particle_bodies]
     alive = ~world.drunk
     bb = world.body_id["bottle"]
-    in_bottle = _inside(pts, d.xpos[bb], d.xmat[bb].reshape(3, 3), layout.BOTTLE_INNER_RADIUS + 0.002, 0.0, layout.BOTTLE_MOUTH_Z + 0.005) & alive
+    in_bottle = in_cylinder(pts, d.xpos[bb], d.xmat[bb].reshape(3, 3), layout.BOTTLE_INNER_RADIUS + 0.002, 0.0, layout.BOTTLE_MOUTH_Z + 0.005) & alive
     in_glass = in_glass_region(world, pts) & alive & ~in_bottle
     mouth = d.site_xpos[world.site_id["human_mouth"]]
     near_mouth = int(np.sum((np.linalg.norm(pts - mouth, axis=1) < 0.08) & alive))

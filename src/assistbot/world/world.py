@@ -22,7 +22,7 @@ import numpy as np
 from assistbot.errors import UserError
 from assistbot.world import layout
 from assistbot.world.arrangement import Arrangement
-from assistbot.world.state import in_glass_region
+from assistbot.world.state import in_cylinder, in_glass_region
 
 STOPPER_RELEASE_FORCE = 12.0   # N, pull-out force of the stopper's friction fit
 STOPPER_FORCE_TAU = 0.02       # s, low-pass time constant of the measured pull
@@ -120,6 +120,7 @@ class World:
         self._hand_min = np.array(list(_CLOSED_MIN.values()))
         self._eq_rows_cache: tuple[int, np.ndarray] | None = None
         self._liquid_geom = m.geom("glass_visual_liquid").id
+        self._particle_alpha = m.geom_rgba[self.particle_geoms, 3].copy()
         self.reset()
 
     # ---------------------------------------------------------------- setup
@@ -226,15 +227,29 @@ class World:
                 self._check()
 
     def sync_liquid(self) -> None:
-        """Set the rendered liquid level in the glass from the particles inside it (see objects.xml)."""
-        m = self.model
-        pts = self.data.xpos[self.particle_bodies]
+        """Set the rendered liquid level in the glass from the particles inside it (see objects.xml).
+
+        Particles no camera can see (drunk, wholly inside the opaque body of the bottle, or
+        wholly under the rendered liquid surface) are left out of the rendered scene: a renderer
+        on the CPU pays for every sphere's vertices, hidden or not.  Rendering only; the
+        physics is unchanged and the images are the same pixel for pixel."""
+        m, d = self.model, self.data
+        pts = d.xpos[self.particle_bodies]
         inside = in_glass_region(self, pts) & ~self.drunk
         h = LIQUID_LEVEL_FULL * float(inside.sum()) / max(1, len(pts))
         g = self._liquid_geom
         m.geom_size[g, 1] = max(0.5 * h, 5e-4)
         m.geom_pos[g, 2] = layout.GLASS_BASE_TOP + 0.5 * h
-        m.geom_rgba[g, 3] = 1.0 if h > 0.002 else 0.0
+        shown = h > 0.002
+        m.geom_rgba[g, 3] = 1.0 if shown else 0.0
+        r = layout.PARTICLE_RADIUS
+        bb, gb = self.body_id["bottle"], self.body_id["glass"]
+        hidden = self.drunk | in_cylinder(pts, d.xpos[bb], d.xmat[bb].reshape(3, 3), layout.BOTTLE_RADIUS - r, r, layout.BOTTLE_BODY_TOP - r)
+        if shown:
+            # resting particles sink a fraction of a millimetre into the glass's base
+            hidden |= in_cylinder(pts, d.xpos[gb], d.xmat[gb].reshape(3, 3), m.geom_size[g, 0] - r,
+                                  layout.GLASS_BASE_TOP + r - 0.001, layout.GLASS_BASE_TOP + h - r)
+        m.geom_rgba[self.particle_geoms, 3] = np.where(hidden, 0.0, self._particle_alpha)
 
     def _check(self) -> None:
         d = self.data
@@ -251,7 +266,9 @@ class World:
     def stopper_pull_force(self) -> float:
         """The stopper fit's constraint force along the bottle's axis, pulling the stopper out (N)."""
         d = self.data
-        rows = np.flatnonzero((d.efc_type[:d.nefc] == mujoco.mjtConstraint.mjCNSTR_EQUALITY) & (d.efc_id[:d.nefc] == self.eq_stopper))
+        # MuJoCo puts the equality rows first (d.ne of them): searching only those keeps this
+        # check cheap while contacts fill the rest of the constraint arrays
+        rows = np.flatnonzero(d.efc_id[:d.ne] == self.eq_stopper)
         if rows.size < 3:
             return 0.0
         f = d.efc_force[rows[:3]]
@@ -273,7 +290,7 @@ class World:
             return float(np.linalg.norm(p - d.site_xpos[self.site_id["stopper_grasp"]]) - layout.STOPPER_RADIUS)
         height = layout.BOTTLE_MOUTH_Z if obj == "bottle" else layout.GLASS_HEIGHT
         radius = layout.BOTTLE_RADIUS if obj == "bottle" else layout.GLASS_RADIUS
-        if obj == "bottle" and local[2] > 0.128:
+        if obj == "bottle" and local[2] > layout.BOTTLE_BODY_TOP:
             radius = 0.0165  # shoulder and neck
         radial = np.hypot(local[0], local[1]) - radius
         axial = max(-local[2], local[2] - height, 0.0)
