@@ -36,6 +36,14 @@ def in_order(seq: list[str], wanted: list[str]) -> bool:
     return all(any(x == w for x in it) for w in wanted)
 
 
+def check_glass_handed_over(r) -> None:
+    """The robot let go of the glass on the person's side only once the person held it, the first time."""
+    ev = [(e["event"], e.get("object")) for e in r.world_events]
+    crossed = ev.index(("crossed_middle_line", "glass"), max(i for i, e in enumerate(ev) if e == ("robot_grasped", "glass")))
+    assert ev[crossed + 1:crossed + 3] == [("human_grasped", "glass"), ("robot_released", "glass")], ev
+    assert [a for _, a in r.decisions].count("Reach-full-glass-to-hand-over") == 1
+
+
 def check_fig3_4(r) -> None:
     """SG grasp -> error; robot holds, human removes the stopper; A6 (never A7); fill; hand over; drink."""
     decisions = [a for _, a in r.decisions]
@@ -52,6 +60,7 @@ def check_fig3_4(r) -> None:
     assert in_order(events, ["stopper_removed", "glass_turned", "glass_filled", "drink"]), events
     removed = next(e for e in r.world_events if e["event"] == "stopper_removed")
     assert removed["robot_holds"] == "bottle"
+    check_glass_handed_over(r)
     assert r.min_distance_human >= 0.05
     assert r.spilled_fraction < 0.10
 
@@ -69,6 +78,7 @@ def check_fig5(r) -> None:
     assert starts and all(e["t"] > first_said for e in starts)
     events = [e["event"] for e in r.world_events]
     assert in_order(events, ["stopper_removed", "glass_filled", "drink"]), events
+    check_glass_handed_over(r)
     assert r.min_distance_human >= 0.05
     assert r.spilled_fraction < 0.10
 
@@ -83,12 +93,8 @@ def test_paper_fig5_passive_user(perception):
     check_fig5(episode("paper-fig5", perception))
 
 
-OTHER_SCENARIOS = [
-    "active-closed-bottle-hws", "active-inverted-glass-hws", "active-open-bottle-hws", "fig4-fill-and-hand-over",
-    pytest.param("slow-open-bottle-rws", marks=pytest.mark.xfail(
-        strict=True, reason="known: the robot's arm knocks the standing bottle over after receiving the glass "
-                            "(also with the oracle); see the closed-loop issue")),
-]
+OTHER_SCENARIOS = ["active-closed-bottle-hws", "active-inverted-glass-hws", "active-open-bottle-hws",
+                   "fig4-fill-and-hand-over", "slow-open-bottle-rws"]
 
 
 @pytest.mark.parametrize("name", OTHER_SCENARIOS)
@@ -102,7 +108,7 @@ def test_every_other_shipped_scenario_ends_with_the_drink_with_vision(name):
 def test_the_shipped_scenarios_are_the_ones_tested():
     from assistbot.scenario import shipped_scenarios
 
-    tested = {"paper-fig3-4", "paper-fig5"} | {p if isinstance(p, str) else p.values[0] for p in OTHER_SCENARIOS}
+    tested = {"paper-fig3-4", "paper-fig5"} | set(OTHER_SCENARIOS)
     assert {p.stem for p in shipped_scenarios()} == tested
 
 

@@ -217,10 +217,37 @@ def test_turn_and_hand_over_gives_the_human_an_upright_glass(glass):
     assert_safe(s)
 
 
+def test_hand_over_felt_lets_go_only_once_the_human_holds_it():
+    """The cameras cannot tell (``human_holds`` is always False): the wrist feels the person take it."""
+    w, robot = make("HWS:closed", "RWS:full@0.20,-0.12")
+    prim = P.HandOver(robot, "glass", human_holds=lambda: False)
+    at_let_go = []
+
+    def watch(t):
+        if prim.progress.phase == "let go" and not at_let_go:
+            at_let_go.append(w.human_holding())
+
+    human = HumanController(w, "passive")
+
+    def tick(t):
+        watch(t)
+        if human.current is None and not human.done and prim.progress.phase == P.OFFER_PHASE:
+            human.start("take_from_robot", object="glass")
+        human.tick(t)
+
+    pr, s = run(w, prim, body_xy(w, "glass"), seconds=45.0, each_tick=tick)
+    settle(w, 1.0, human)
+    assert pr.status is Status.SUCCEEDED, pr.reason
+    assert at_let_go == ["glass"]
+    st = w.state()
+    assert st.human_holds == "glass" and st.liquid.spilled < 0.1 * st.liquid.total, st.summary()
+
+
 def test_hand_over_without_a_taker_fails_with_a_reason():
-    w, robot = make("HWS:closed", "RWS:empty@0.18,-0.10")
-    prim = P.HandOver(robot, "glass", timeout=1.0)
-    pr, s = run(w, prim, body_xy(w, "glass"), seconds=20)
+    # a full glass held out still for 6 s: the liquid settling in it is not taken for a pull
+    w, robot = make("HWS:closed", "RWS:full@0.18,-0.10")
+    prim = P.HandOver(robot, "glass", timeout=6.0)
+    pr, s = run(w, prim, body_xy(w, "glass"), seconds=30)
     assert pr.status is Status.FAILED and "did not take" in pr.reason
     assert_safe(s)
 
@@ -250,10 +277,12 @@ def test_receive_takes_the_object_from_the_human_hand_and_puts_it_in_rws(obj, ar
 
 # --------------------------------------------------------------------------- request, retract, failures
 @pytest.mark.parametrize("target, arrangement", [((-0.20, -0.25), ("HWS:closed", "HWS:empty@-0.20,-0.25")),
-                                                 ((-0.22, 0.12), ("RWS:closed@0.20,0.12", "HWS:empty"))])
+                                                 ((-0.22, 0.12), ("RWS:closed@0.20,0.12", "HWS:empty")),
+                                                 ((-0.22, 0.121), ("RWS:open@0.20,0.12", "HWS:empty")),
+                                                 ((-0.22, 0.05), ("RWS:open@0.20,0.12", "HWS:empty@-0.22,0.05"))])
 def test_request_holds_open_hand_near_middle_line(target, arrangement):
     """Also with the bottle standing in the RWS on the glass's side: the hand moves aside so that the
-    forearm, which comes up from below to a palm-up hand, does not hit it."""
+    forearm, which comes up from below to a palm-up hand, does not hit it (it stays standing where it was)."""
     from assistbot.human.perception import see_robot
 
     w, robot = make(*arrangement)
@@ -277,6 +306,10 @@ def test_request_holds_open_hand_near_middle_line(target, arrangement):
     # then withdrawn: the robot's own cameras see past it again
     assert w.data.site_xpos[w.model.site("robot_palm_face").id][0] > 0.2
     assert_safe(s)
+    bottle = w.state().objects["bottle"]
+    assert bottle.upright
+    if bottle.zone == "RWS":
+        assert np.hypot(bottle.pos[0] - 0.20, bottle.pos[1] - 0.12) < 0.01
 
 
 def test_retract_from_home():

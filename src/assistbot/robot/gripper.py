@@ -57,6 +57,8 @@ class Gripper:
         self._part_code[list(self._part_of_geom)] = 1
         self.command = OPEN
         self._force = np.zeros(6)
+        ws = model.sensor("robot_wrist_force")
+        self._wrist = slice(int(ws.adr[0]), int(ws.adr[0]) + 3)
 
     def open(self, amount: float = 1.0) -> None:
         """Open the fingers (amount 1: fully; 0.5: half way to closed)."""
@@ -107,6 +109,10 @@ class Gripper:
                 if best is None or t.force > best.force:
                     best = t
         return None if best is None else best.body
+
+    def wrist_force(self) -> np.ndarray:
+        """The wrist force-torque sensor's force (N, in the wrist frame): the hand's and its load's weight and pulls."""
+        return self.data.sensordata[self._wrist].copy()
 
     def fully_closed(self) -> bool:
         """True when the fingers closed on nothing (all near the end of their range)."""

@@ -168,6 +168,37 @@ class WaitFor(Phase):
         return Status.RUNNING, ""
 
 
+class WaitForTake(WaitFor):
+    """Hold the object out until the person takes it: seen holding it (``human_holds()``), or felt.
+
+    Felt: the wrist's force moves PULL_N away from what it was once the held-out hand had come to
+    rest, as the person's grip takes up part of the load.  With the cameras alone the robot
+    often cannot tell: the person's fingers around the object hide it in the robot's hand."""
+
+    PULL_N = 0.8
+    REST_SECONDS = 0.3   # the force at rest is read after this
+    FELT_TICKS = 2       # in a row: one jolt is not a pull
+
+    def __init__(self, name: str, timeout: float, reason: str) -> None:
+        super().__init__(name, lambda p: p.human_holds() or self._felt >= self.FELT_TICKS, timeout, reason)
+
+    def start(self, prim):
+        super().start(prim)
+        self._rest = None
+        self._felt = 0
+
+    def tick(self, prim, dt, t):
+        force = prim.robot.gripper.wrist_force()
+        if self._rest is None:
+            if t >= self.REST_SECONDS:
+                self._rest = force
+        elif np.linalg.norm(force - self._rest) > self.PULL_N:
+            self._felt += 1
+        else:
+            self._felt = 0
+        return super().tick(prim, dt, t)
+
+
 class Rise(Move):
     """Straight up from where the hand is to ``z`` (world, m), keeping its orientation."""
 
@@ -367,9 +398,17 @@ def _side_grasp_pose(prim: Primitive, back: float = 0.0, up: float = 0.0, roll: 
     return _grasp_pose_at(prim, c, obj, back, roll)
 
 
-def _retract() -> list[Phase]:
-    return [Rise("rise", 1.0),
-            Move("retract", lambda p: poses.pose(mink.SO3.identity(), READY_POSE_POS), duration=1.2, tolerance=0.04)]
+def _retract(over_at: float | None = None) -> list[Phase]:
+    """Up, then back to the ready pose; with ``over_at`` (world z, m) the hand first rises to that
+    height and crosses to above the ready pose there, so it passes over the objects on its way."""
+    if over_at is None:
+        return [Rise("rise", 1.0),
+                Move("retract", lambda p: poses.pose(mink.SO3.identity(), READY_POSE_POS), duration=1.2, tolerance=0.04)]
+    above = READY_POSE_POS.copy()
+    above[2] = max(above[2], over_at)
+    return [Rise("rise", over_at),
+            Move("withdraw over", lambda p: poses.pose(mink.SO3.identity(), above), duration=1.2, tolerance=0.04),
+            Move("retract", lambda p: poses.pose(mink.SO3.identity(), READY_POSE_POS), duration=0.6, tolerance=0.04)]
 
 
 def _reach_and_grasp(prim: Primitive, height: float | None = None, base_z: float = TABLE_Z) -> list[Phase]:
@@ -519,10 +558,14 @@ def _hold_out(base: float = HOLD_OUT_BASE, xy=HOLD_OUT_XY, duration: float = 2.5
     return Move("hold out", goal, duration=duration, tolerance=0.03)
 
 
+#: the phase of a hand-over in which the object is held out for the person to take
+OFFER_PHASE = "wait for the human to take it"
+
+
 def _give(timeout: float) -> list[Phase]:
     """The object is held out: wait until the human holds it, let go, withdraw."""
     return [
-        WaitFor("wait for the human to take it", lambda p: p.human_holds(), timeout, "the human did not take it"),
+        WaitForTake(OFFER_PHASE, timeout, "the human did not take it"),
         Wait("feel the pull", 0.3),
         _Open("let go"), _Carry(False),
         BackOff("back off", distance=0.16, up=0.0, duration=1.2),
@@ -584,6 +627,13 @@ class Retract(Primitive):
         return _retract()
 
 
+def _segment_distance(p: np.ndarray, a: np.ndarray, b: np.ndarray) -> float:
+    """Distance from point p to the segment a-b (any dimension)."""
+    ab = b - a
+    s = float(np.clip(np.dot(p - a, ab) / max(float(np.dot(ab, ab)), 1e-12), 0.0, 1.0))
+    return float(np.linalg.norm(p - (a + s * ab)))
+
+
 class Request(Primitive):
     """Hold an open hand out, palm up, near the middle line toward the target object's side (a request),
     for SHOW_SECONDS, then withdraw it.
@@ -595,23 +645,31 @@ class Request(Primitive):
 
     name = "request"
     HEIGHT = 0.20  # above the table
+    WITHDRAW_HEIGHT = 0.33  # above the table: the hand is withdrawn at this height
+    HAND_X = 0.06  # table x of the held-out hand, just on the robot's side of the middle line
     SHOW_SECONDS = 2.0
     PALM_UP = math.radians(60)
     Y_RANGE = (-0.12, 0.30)
 
-    #: an object standing in the RWS closer than this (m, in y) to the hand's line would meet the forearm,
-    #: which comes up from below to a palm-up hand
-    CLEAR_Y = 0.11
+    #: an object standing in the RWS closer than this (m, seen from above) to the line from the
+    #: shoulder to the hand would meet the forearm, which comes up from below to a palm-up hand
+    CLEAR = 0.11
 
     def _y(self) -> float:
-        """The hand's y: toward the target's side, moved aside from objects seen standing in the RWS."""
+        """The hand's y: toward the target's side, moved to where the arm clears the objects seen standing in the RWS.
+
+        The arm is checked along the line from the shoulder to the hand, not just at the hand:
+        a hand put on the far side of an object pulls the forearm across it."""
         y = float(np.clip(self.xy()[1], *self.Y_RANGE))
-        obstacles = [xy[1] for xy in (self.locate(n) for n in ("bottle", "glass")) if xy is not None and xy[0] > 0.0]
-        if not obstacles or all(abs(y - o) >= self.CLEAR_Y for o in obstacles):
+        obstacles = [np.asarray(xy, float) for xy in (self.locate(n) for n in ("bottle", "glass")) if xy is not None and xy[0] > 0.0]
+        shoulder = np.asarray(self.robot.shoulder[:2], float)
+
+        def clear(c: float) -> bool:
+            return all(_segment_distance(o, shoulder, np.array([self.HAND_X, c])) >= self.CLEAR for o in obstacles)
+
+        if clear(y):
             return y
-        lo, hi = self.Y_RANGE
-        candidates = np.linspace(lo, hi, 43)
-        free = [c for c in candidates if all(abs(c - o) >= self.CLEAR_Y for o in obstacles)]
+        free = [c for c in np.linspace(*self.Y_RANGE, 43) if clear(c)]
         return float(min(free, key=lambda c: abs(c - y))) if free else y
 
     def phases(self):
@@ -619,15 +677,17 @@ class Request(Primitive):
             if getattr(p, "_request_y", None) is None:
                 p._request_y = p._y()
             y = p._request_y
-            pos = np.array([0.06, y, TABLE_Z + self.HEIGHT])
+            pos = np.array([self.HAND_X, y, TABLE_Z + self.HEIGHT])
             # palm up: the palm normal (gripper -x) turned from horizontal toward world +z
             rot = poses.side_rotation(pos, p.robot.shoulder) @ mink.SO3.from_y_radians(self.PALM_UP)
             return poses.pose(rot, pos)
         self._request_y = None
         # a gesture: shown, then withdrawn, so that the hand does not hide from the robot's own
         # cameras the object the person now holds out toward it
+        # withdrawn over the objects of the RWS: high enough that the palm-up hand, which hangs
+        # below its TCP, passes over a bottle with its stopper
         return [_Open("open"), Move("hold out open hand", goal, duration=2.0, tolerance=0.03),
-                Wait("show the open hand", self.SHOW_SECONDS), *_retract()]
+                Wait("show the open hand", self.SHOW_SECONDS), *_retract(over_at=TABLE_Z + self.WITHDRAW_HEIGHT)]
 
 
 class PlaceInRWS(Primitive):
