@@ -645,7 +645,7 @@ class Request(Primitive):
 
     name = "request"
     HEIGHT = 0.20  # above the table
-    WITHDRAW_HEIGHT = 0.33  # above the table: the hand is withdrawn at this height
+    OVER_HEIGHT = 0.33  # above the table: the hand goes out and back at this height
     HAND_X = 0.06  # table x of the held-out hand, just on the robot's side of the middle line
     SHOW_SECONDS = 2.0
     PALM_UP = math.radians(60)
@@ -673,21 +673,22 @@ class Request(Primitive):
         return float(min(free, key=lambda c: abs(c - y))) if free else y
 
     def phases(self):
-        def goal(p):
+        def goal(p, height=self.HEIGHT):
             if getattr(p, "_request_y", None) is None:
                 p._request_y = p._y()
-            y = p._request_y
-            pos = np.array([self.HAND_X, y, TABLE_Z + self.HEIGHT])
+            pos = np.array([self.HAND_X, p._request_y, TABLE_Z + height])
             # palm up: the palm normal (gripper -x) turned from horizontal toward world +z
             rot = poses.side_rotation(pos, p.robot.shoulder) @ mink.SO3.from_y_radians(self.PALM_UP)
             return poses.pose(rot, pos)
         self._request_y = None
-        # a gesture: shown, then withdrawn, so that the hand does not hide from the robot's own
-        # cameras the object the person now holds out toward it
-        # withdrawn over the objects of the RWS: high enough that the palm-up hand, which hangs
-        # below its TCP, passes over a bottle with its stopper
-        return [_Open("open"), Move("hold out open hand", goal, duration=2.0, tolerance=0.03),
-                Wait("show the open hand", self.SHOW_SECONDS), *_retract(over_at=TABLE_Z + self.WITHDRAW_HEIGHT)]
+        # the hand travels over the objects of the RWS, both ways: high enough that the palm-up
+        # hand, which hangs below its TCP, passes over a bottle with its stopper; a gesture: shown,
+        # then withdrawn, so that it does not hide from the robot's own cameras the object the
+        # person now holds out toward it
+        return [_Open("open"), Rise("rise", TABLE_Z + self.OVER_HEIGHT),
+                Move("over", lambda p: goal(p, self.OVER_HEIGHT), duration=1.5, tolerance=0.04),
+                Move("hold out open hand", goal, duration=1.0, tolerance=0.03),
+                Wait("show the open hand", self.SHOW_SECONDS), *_retract(over_at=TABLE_Z + self.OVER_HEIGHT)]
 
 
 class PlaceInRWS(Primitive):
