@@ -129,7 +129,10 @@ class Episode:
         self.world_events: list[dict] = []
         self.frame_every = frame_every
         self.on_frame: Callable[["Episode"], None] | None = None
-        self.wall = {"physics": 0.0, "perception": 0.0, "cognition": 0.0, "robot": 0.0, "human": 0.0, "video": 0.0}
+        # perception is what turns the world into a Percept (vision's processing, or the oracle);
+        # rendering, the head cameras' images it starts from
+        self.wall = {"physics": 0.0, "rendering": 0.0, "perception": 0.0, "cognition": 0.0, "robot": 0.0, "human": 0.0,
+                     "video": 0.0}
         self._n_sub = max(1, int(round(CONTROL_DT / self.world.model.opt.timestep)))
         self._drink_base: int | None = None
         self._prev = None
@@ -210,7 +213,9 @@ class Episode:
                 decision = self.cognition.update(percept)
                 if self.robot.status in ("finished", "failed"):
                     self.robot.acknowledge()
-                wall["perception"] += c1 - c0
+                rendered = getattr(self.perception, "render_seconds", 0.0)
+                wall["rendering"] += rendered
+                wall["perception"] += c1 - c0 - rendered
                 wall["cognition"] += time.perf_counter() - c1
                 self.last_percept = percept
                 self._watch(t)

@@ -26,9 +26,11 @@ class VisionPerception:
         self._tcp_site = world.model.site("robot_tcp").id
         self._frame = None
         self._percept: Percept | None = None
+        self.render_seconds = 0.0
 
     def perceive(self, t: float, robot: dict) -> Percept:
         frame = self.capture.grab(self.world.data)
+        self.render_seconds = frame.render_ms / 1000.0  # of this call, for the episode's wall-time split
         tcp = self.world.data.site_xpos[self._tcp_site].copy()  # forward kinematics of the robot's own arm
         tcp[2] -= TABLE_Z
         p = self.vision.perceive(frame, robot_holding=robot.get("holding"), robot_tcp=tcp)
