@@ -183,8 +183,9 @@ def _give(w, robot, prim, target, obj, seconds=45.0):
     return pr, s, human
 
 
-@pytest.mark.parametrize("glass", ["0.20,-0.12", "0.14,0.08"])
+@pytest.mark.parametrize("glass", ["0.20,-0.12", "0.14,0.08", "0.265,-0.089"])
 def test_full_glass_handed_over_ends_in_the_human_hand(glass):
+    """Also a glass standing close to the robot, which the arm reaches without folding into its own column."""
     w, robot = make("HWS:closed", f"RWS:full@{glass}")
     prim = P.HandOver(robot, "glass", human_holds=lambda: w.human_holding() == "glass")
     pr, s, human = _give(w, robot, prim, body_xy(w, "glass"), "glass")

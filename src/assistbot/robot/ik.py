@@ -3,10 +3,12 @@
 Tasks: a `FrameTask` on the site ``robot_tcp`` (the target pose comes from
 the motion primitive) and a `PostureTask` toward a natural arm posture.
 Limits: joint ranges and the joint speeds of the MJCF (custom numeric
-``robot_joint_max_speed``), and two `CollisionAvoidanceLimit`s: the whole arm
-keeps ``human_clearance`` (m) from the human's head and torso, and the
-forearm keeps ``table_clearance`` from the table top (the hand may go near
-it to grasp). A QP without a solution (`mink.NoSolutionFound`) is reported in
+``robot_joint_max_speed``), and `CollisionAvoidanceLimit`s: the whole arm
+keeps ``human_clearance`` (m) from the human's head and torso, the hand
+keeps ``table_clearance`` and the forearm 3 cm from the table top (the hand
+may go near it to grasp), and the forearm and hand keep ``body_clearance``
+from the robot's own column and pedestal (an object close to the robot is
+otherwise reached with the elbow folded into the column). A QP without a solution (`mink.NoSolutionFound`) is reported in
 the `IKResult`, never raised; the commanded configuration then stays put.
 """
 
@@ -21,7 +23,7 @@ import mink
 import mujoco
 import numpy as np
 
-from assistbot.robot.ik_model import ARM_GEOMS, ARM_JOINTS, HAND_GEOMS, HUMAN_BODY_GEOMS, TABLE_GEOMS, build_ik_model
+from assistbot.robot.ik_model import ARM_GEOMS, ARM_JOINTS, BODY_GEOMS, HAND_GEOMS, HUMAN_BODY_GEOMS, TABLE_GEOMS, build_ik_model
 
 #: a relaxed posture: elbow bent, forearm forward, hand above the table in front of the robot
 READY_POSTURE = np.array([-0.77, -0.47, 0.44, 0.74, 0.35, -0.08, 0.29])  # TCP at (0.30, 0.05, 1.00), palm toward -x
@@ -36,6 +38,7 @@ class IKParams:
     damping: float = 1e-4
     human_clearance: float = 0.07   # m between arm geoms and human head/torso (tests require >= 0.05)
     table_clearance: float = 0.005  # m between the hand and the table top
+    body_clearance: float = 0.02    # m between the forearm and hand and the robot's column and pedestal
     detection_distance: float = 0.15  # m: pairs closer than this enter the QP
     collision: bool = True
     speed_scale: float = 0.9        # fraction of the MJCF joint speeds the IK may use
@@ -80,6 +83,9 @@ class ArmIK:
             mink.CollisionAvoidanceLimit(self.model, [(forearm, list(TABLE_GEOMS))],
                                          minimum_distance_from_collisions=0.03,
                                          collision_detection_distance=0.1),
+            mink.CollisionAvoidanceLimit(self.model, [(list(ARM_GEOMS[1:]), list(BODY_GEOMS))],
+                                         minimum_distance_from_collisions=p.body_clearance,
+                                         collision_detection_distance=p.body_clearance + 0.1),
         ]
         # cheap pre-check per collision limit: the arm's bounding spheres against the human's (a lower
         # bound on the distance), or the hand's/forearm's lowest point against the table top (static)
@@ -92,7 +98,11 @@ class ArmIK:
         self._hand_rows = np.isin(self._arm_ids, gid(HAND_GEOMS))
         t = gid(TABLE_GEOMS)[0]
         self._table_top = float(d0.geom_xpos[t][2] + np.abs(d0.geom_xmat[t].reshape(3, 3)[2]) @ m.geom_size[t])
-        self._reach = (p.human_clearance + p.detection_distance, p.table_clearance + 0.05, 0.1)
+        column = m.geom("robot_column").id
+        self._column_xy = d0.geom_xpos[column][:2].copy()
+        self._column_r = float(max(m.geom_size[column][0], m.geom_size[m.geom("robot_pedestal").id][0]))
+        self._body_rows = self._arm_ids != m.geom(ARM_GEOMS[0]).id   # the upper arm starts at the column
+        self._reach = (p.human_clearance + p.detection_distance, p.table_clearance + 0.05, 0.1, p.body_clearance + 0.1)
         self._lo, self._hi = self.model.jnt_range[:, 0].copy(), self.model.jnt_range[:, 1].copy()
         self._vmax = self.max_speed * p.speed_scale
         self._gain = self.base_limits[0].gain
@@ -109,7 +119,9 @@ class ArmIK:
         pa = xpos[self._arm_ids]
         gap_h = np.linalg.norm(pa[:, None, :] - xpos[self._human_ids][None], axis=2) - self._arm_r[:, None] - self._human_r[None]
         low = pa[:, 2] - self._arm_r - self._table_top
-        gaps = (float(gap_h.min()), float(low[self._hand_rows].min()), float(low[~self._hand_rows].min()))
+        # the column and pedestal are vertical cylinders about one axis: the horizontal gap bounds the distance
+        gap_b = np.linalg.norm(pa[self._body_rows, :2] - self._column_xy, axis=1) - self._arm_r[self._body_rows] - self._column_r
+        gaps = (float(gap_h.min()), float(low[self._hand_rows].min()), float(low[~self._hand_rows].min()), float(gap_b.min()))
         return [lim for lim, gap, reach in zip(self.collision_limits, gaps, self._reach) if gap < reach]
 
     def _solve_qp(self, q: np.ndarray, dt: float, collision_limits: list) -> np.ndarray:

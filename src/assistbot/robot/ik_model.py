@@ -27,6 +27,8 @@ ARM_GEOMS: tuple[str, ...] = (
 )
 #: the gripper's geoms (the only ones allowed near the table)
 HAND_GEOMS: tuple[str, ...] = ARM_GEOMS[3:]
+#: the robot's own fixed body, which the forearm and hand must not fold into
+BODY_GEOMS: tuple[str, ...] = ("robot_column", "robot_pedestal")
 
 _DROP_BODIES = ("bottle", "stopper", "glass", "human_r_upper_arm")
 
