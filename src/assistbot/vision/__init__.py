@@ -7,9 +7,8 @@ Parts (one idea per file):
   calibration.py  `calibrate`: HSV ranges and static skin spots from labelled calibration renders
   detect.py       `Detector`: blobs -> stereo-matched objects and hand (arm root at the sleeve), 3-D positions,
                   visibility from the silhouette's extent, crops, features
-  library.py      the template library (prototype PNGs; matchTemplate's normalised correlation over the
-                  shifted prototypes as one matrix product) and the classifiers (k-NN over template
-                  scores + features; hand postures: a small network ensemble)
+  library.py      the template library (prototype PNGs, matchTemplate over a prototype mosaic) and the
+                  classifiers (k-NN over template scores + features; hand postures: a small network)
   pipeline.py     `Vision.perceive(frame) -> Percept` (stopper rules, low confidence when the hand hides
                   it), `Vision.overlay`, `build_library`
   scenes.py       labelled scene posing for calibration, templates, tests and the benchmark

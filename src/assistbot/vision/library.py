@@ -4,11 +4,9 @@ Built by `assistbot templates` from scenes of the "library" seed stream (never s
 each classified thing — the bottle's state, the glass's state, the hand's posture — the
 library keeps, per class, up to `PROTOTYPES` prototype templates (means of k-means clusters
 of the examples' crops) and the examples' feature vectors.  Classification of a new crop:
-the normalised correlation coefficient (cv2.matchTemplate's TM_CCOEFF_NORMED, computed as one
-matrix-vector product with the prototypes' precomputed shifted windows) of the crop against every
-prototype, shifted by up to +-3 px (+-2 for the hand), gives one score per class; those scores and the shape features
-form the feature vector, classified by its nearest labelled examples (k-NN, standardised features)
-or, for the hand, by a small neural network ensemble.
+`cv2.matchTemplate` (normalised correlation coefficient) of the crop against every prototype
+at three scales gives one score per class; those scores and the shape features form the
+feature vector, classified by its nearest labelled examples (k-NN, standardised features).
 """
 
 from __future__ import annotations
@@ -30,53 +28,39 @@ K_NEIGHBOURS = 5
 
 
 _SHIFT = 3
-#: a smaller shift range for the hand's 24x24 crops (9 classes x 2 prototypes: the largest matrix)
-SHIFT = {"hand": 2}
-_WINDOWS: dict[int, tuple] = {}
+_MOSAICS: dict[int, tuple] = {}
 
 
-def _windows(protos: list[list[np.ndarray]], shift: int = _SHIFT) -> tuple[np.ndarray, np.ndarray]:
-    """Every prototype shifted by -shift..+shift px (zeros shifted in), each window centred and
-    scaled to unit norm: ((windows, pixels) matrix, class per window).  Computed once per library."""
-    key = (id(protos), shift)
-    if key not in _WINDOWS:
-        rows, cls = [], []
-        for c, plist in enumerate(protos):
-            for p in plist:
-                h, w = p.shape
-                pad = np.zeros((h + 2 * shift, w + 2 * shift), np.float32)
-                pad[shift:shift + h, shift:shift + w] = p
-                for dy in range(2 * shift + 1):
-                    for dx in range(2 * shift + 1):
-                        win = pad[dy:dy + h, dx:dx + w].ravel().astype(np.float64)
-                        win = win - win.mean()
-                        n = np.linalg.norm(win)
-                        rows.append(win / n if n > 1e-9 else np.zeros_like(win))
-                        cls.append(c)
-        W = np.array(rows, np.float32) if rows else np.zeros((0, 1), np.float32)
-        _WINDOWS[key] = (W, np.array(cls, int), protos)   # protos kept: the id stays theirs
-    W, cls, _ = _WINDOWS[key]
-    return W, cls
+def _mosaic(protos: list[list[np.ndarray]]) -> tuple[np.ndarray, np.ndarray, int]:
+    """All prototypes side by side, each with a `_SHIFT`-px zero border: (image, class per prototype, stride)."""
+    key = id(protos)
+    if key not in _MOSAICS:
+        flat = [(c, p) for c, plist in enumerate(protos) for p in plist]
+        h, w = flat[0][1].shape
+        stride = w + 2 * _SHIFT
+        img = np.zeros((h + 2 * _SHIFT, len(flat) * stride), np.float32)
+        for j, (_, p) in enumerate(flat):
+            img[_SHIFT:_SHIFT + h, j * stride + _SHIFT:j * stride + _SHIFT + w] = p
+        _MOSAICS[key] = (img, np.array([c for c, _ in flat]), stride, protos)   # protos kept: the id stays theirs
+    img, cls, stride, _ = _MOSAICS[key]
+    return img, cls, stride
 
 
-def template_scores(crop: np.ndarray | None, protos: list[list[np.ndarray]], shift: int = _SHIFT) -> np.ndarray:
-    """Best normalised match (TM_CCOEFF_NORMED: correlation of the mean-free crop and window over their
-    norms) of crop against each class's prototypes shifted by up to +-shift px: one score per class.  The
-    shifted prototypes are precomputed, normalised, as the rows of one matrix, so matching is one
-    matrix-vector product (what cv2.matchTemplate of the crop over a mosaic of the prototypes computes,
-    at the same positions, at a fraction of the cost).  Crops are normalised to the template size by the
-    detector (their size follows the object's distance), so one scale suffices."""
+def template_scores(crop: np.ndarray | None, protos: list[list[np.ndarray]]) -> np.ndarray:
+    """Best normalised match (cv2.matchTemplate, TM_CCOEFF_NORMED, +-3 px shifts) of crop against each
+    class's prototypes: one score per class, in ONE matchTemplate call (the crop slides over a
+    mosaic of all prototypes).  Crops are normalised to the template size by the detector (their
+    size follows the object's distance), so one scale suffices."""
     if crop is None or not any(protos):
         return np.zeros(0, np.float32)
-    W, cls = _windows(protos, shift)
-    t = crop.ravel().astype(np.float32)
-    t = t - t.mean()
-    n = float(np.sqrt(t @ t))
+    img, cls, stride = _mosaic(protos)
+    r = cv2.matchTemplate(img, crop.astype(np.float32), cv2.TM_CCOEFF_NORMED)
+    r = np.nan_to_num(r, nan=-1.0, posinf=-1.0, neginf=-1.0)
+    n = len(cls)
+    r = np.pad(r, ((0, 0), (0, n * stride - r.shape[1])), constant_values=-1.0)
+    per = r.reshape(r.shape[0], n, stride)[:, :, :2 * _SHIFT + 1].max(axis=(0, 2))
     out = np.full(len(protos), -1.0, np.float32)
-    if n < 1e-6:                # a constant crop matches nothing
-        return out
-    r = np.einsum("ij,j->i", W, t / n)     # numpy's own loop: a threaded BLAS call costs more on a busy machine
-    np.maximum.at(out, cls, r)
+    np.maximum.at(out, cls, per)
     return out
 
 
@@ -109,14 +93,9 @@ class Classifier:
     std: np.ndarray
     weights: np.ndarray
     mlp: dict[str, np.ndarray] | None = None     # W1, b1, W2, b2: a one-hidden-layer network instead of k-NN
-    pca: tuple[np.ndarray, np.ndarray] | None = None   # (mean, components): the crop's principal components as features
 
     def features(self, crop: np.ndarray | None, extra: np.ndarray) -> np.ndarray:
-        parts = [template_scores(crop, self.protos, SHIFT.get(self.kind, _SHIFT))]
-        if self.pca is not None:
-            parts.append(_project(crop, self.pca))
-        parts.append(np.asarray(extra, np.float32))
-        return np.concatenate(parts)
+        return np.concatenate([template_scores(crop, self.protos), np.asarray(extra, np.float32)])
 
     def classify(self, crop: np.ndarray | None, extra: np.ndarray) -> tuple[str, float, np.ndarray]:
         """(class, confidence in [0, 1], class template scores)."""
@@ -129,13 +108,13 @@ class Classifier:
             pr = np.exp(logit - logit.max(axis=1, keepdims=True))
             pr = (pr / pr.sum(axis=1, keepdims=True)).mean(axis=0)
             c = int(np.argmax(pr))
-            return self.classes[c], float(pr[c]), f[:len(self.protos)]
+            return self.classes[c], float(pr[c]), f[:len(f) - len(extra)]
         d = np.sum((self.X - z) ** 2, axis=1)
         idx = np.argpartition(d, min(K_NEIGHBOURS, len(d) - 1))[:K_NEIGHBOURS]
         w = 1.0 / (np.sqrt(d[idx]) + 1e-3)
         votes = np.bincount(self.y[idx], weights=w, minlength=len(self.classes))
         c = int(np.argmax(votes))
-        return self.classes[c], float(votes[c] / votes.sum()), f[:len(self.protos)]
+        return self.classes[c], float(votes[c] / votes.sum()), f[:len(f) - len(extra)]
 
 
 def build_classifier(kind: str, crops: list[np.ndarray | None], extras: list[np.ndarray], labels: list[str], seed: int = 0,
@@ -152,11 +131,7 @@ def build_classifier(kind: str, crops: list[np.ndarray | None], extras: list[np.
         lab = kmeans(X, PROTOTYPES, seed + c)
         protos.append([_to_u8(X[lab == j].mean(0).reshape(sel[0].shape)) for j in range(lab.max() + 1) if np.any(lab == j)])
     protos_f = [[p.astype(np.float32) / 255.0 for p in pl] for pl in protos]
-    pca = None
-    if kind in PCA_KINDS:
-        pca = _fit_pca([cr for cr in crops if cr is not None], PCA_COMPONENTS)
-    probe = Classifier(kind, classes, protos_f, np.zeros((0, 1), np.float32), y, np.zeros(1), np.ones(1), np.ones(1), None, pca)
-    F = np.array([probe.features(cr, e) for cr, e in zip(crops, extras)], np.float32)
+    F = np.array([np.concatenate([template_scores(cr, protos_f), e]) for cr, e in zip(crops, extras)], np.float32)
     mean, std = F.mean(0), F.std(0) + 1e-3
     w = np.ones(F.shape[1], np.float32)
     if weights is not None:
@@ -168,27 +143,7 @@ def build_classifier(kind: str, crops: list[np.ndarray | None], extras: list[np.
         mlp = {k: np.stack([m[k] for m in members]) for k in members[0]}
     if mlp is not None:
         Z = Z[:0]                  # the network replaces the examples (their labels stay, for the counts)
-    return Classifier(kind, classes, protos_f, Z, y, mean, std, w, mlp, pca)
-
-
-PCA_KINDS = ("hand",)
-PCA_COMPONENTS = 20         # the hand crop's leading principal components: the outline's shape beyond the class templates
-
-
-def _fit_pca(crops: list[np.ndarray], k: int) -> tuple[np.ndarray, np.ndarray]:
-    """Mean and the k leading principal axes of the crops (as stored: rounded to 5 decimals)."""
-    X = np.array([c.ravel() for c in crops], np.float64)
-    mu = X.mean(0)
-    _, _, Vt = np.linalg.svd(X - mu, full_matrices=False)
-    V = Vt[:k] * np.sign(Vt[:k, :1] + 1e-12)       # a fixed sign per axis
-    return np.round(mu, 5).astype(np.float32), np.round(V, 5).astype(np.float32)
-
-
-def _project(crop: np.ndarray | None, pca: tuple[np.ndarray, np.ndarray]) -> np.ndarray:
-    mu, V = pca
-    if crop is None:
-        return np.zeros(len(V), np.float32)
-    return np.einsum("ij,j->i", V, crop.ravel().astype(np.float32) - mu)   # no BLAS call (its threads: see template_scores)
+    return Classifier(kind, classes, protos_f, Z, y, mean, std, w, mlp)
 
 
 MLP_KINDS = ("hand",)
@@ -233,8 +188,6 @@ def save(root: Path, classifiers: dict[str, Classifier], calibration: dict, meta
     for kind, clf in classifiers.items():
         entry = {"classes": list(clf.classes), "prototypes": {}, "mean": _r(clf.mean), "std": _r(clf.std),
                  "weights": _r(clf.weights), "examples": {"X": [_r(x) for x in clf.X], "y": clf.y.tolist()}}
-        if clf.pca is not None:
-            entry["pca"] = {"mean": _r(clf.pca[0]), "components": [_r(v) for v in clf.pca[1]]}
         if clf.mlp is not None:
             entry["mlp"] = {k: [[_r(row) for row in np.atleast_2d(member)] for member in v] for k, v in clf.mlp.items()}
         for c, plist in zip(clf.classes, clf.protos):
@@ -278,9 +231,6 @@ def load(root: Path | None = None) -> tuple[dict[str, Classifier], dict]:
         if "mlp" in e:
             mlp = {k: np.array(v, np.float32) for k, v in e["mlp"].items()}
             mlp["b1"], mlp["b2"] = mlp["b1"][:, 0], mlp["b2"][:, 0]     # (members, units)
-        pca = None
-        if "pca" in e:
-            pca = (np.array(e["pca"]["mean"], np.float32), np.array(e["pca"]["components"], np.float32))
         out[kind] = Classifier(kind, tuple(e["classes"]), protos, X, np.array(e["examples"]["y"], int),
-                               np.array(e["mean"], np.float32), np.array(e["std"], np.float32), np.array(e["weights"], np.float32), mlp, pca)
+                               np.array(e["mean"], np.float32), np.array(e["std"], np.float32), np.array(e["weights"], np.float32), mlp)
     return out, load_calibration(root)

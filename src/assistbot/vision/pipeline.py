@@ -110,23 +110,22 @@ class Vision:
         """State and confidence.  Bottle: red touching it in either camera is the stopper (closed);
         no red with the hand at the bottle's top (stereo: within `HAND_AT_TOP` m) means the stopper
         may be hidden in the hand: the state then comes with a low confidence; else open."""
-        if name != "bottle":
-            state, conf, _ = self.classifiers[name].classify(d.crop, d.feat)
-            return state, conf
-        hand_at_top = bool(hand.visible and np.linalg.norm(hand.position - (d.position + [0, 0, 0.19])) < HAND_AT_TOP)
-        # lifted in the person's hand: a grip from above covers the stopper wherever vision puts the hand
-        hand_at_top |= bool(hand.visible and not d.on_table
-                            and np.linalg.norm(hand.position - (d.position + [0, 0, CENTROID_Z["bottle"]])) < HELD_DIST)
-        both = min(d.stopper) >= STOPPER_SEEN
-        one = max(d.stopper) >= STOPPER_SEEN
-        if both:
-            return "closed", 0.95
-        if one and hand_at_top:
-            return "closed", 0.7       # the stopper shows beside the hand in one camera
-        if one or hand_at_top:       # the classifier only where the stopper's pixels do not decide
-            state, conf, _ = self.classifiers[name].classify(d.crop, d.feat)
-            return state, min(conf, LOW_CONFIDENCE)
-        return "open", 0.9
+        state, conf, _ = self.classifiers[name].classify(d.crop, d.feat)
+        if name == "bottle":
+            hand_at_top = bool(hand.visible and np.linalg.norm(hand.position - (d.position + [0, 0, 0.19])) < HAND_AT_TOP)
+            # lifted in the person's hand: a grip from above covers the stopper wherever vision puts the hand
+            hand_at_top |= bool(hand.visible and not d.on_table
+                                and np.linalg.norm(hand.position - (d.position + [0, 0, CENTROID_Z["bottle"]])) < HELD_DIST)
+            both = min(d.stopper) >= STOPPER_SEEN
+            one = max(d.stopper) >= STOPPER_SEEN
+            if both:
+                return "closed", 0.95
+            if one and hand_at_top:
+                return "closed", 0.7       # the stopper shows beside the hand in one camera
+            if one or hand_at_top:
+                return state, min(conf, LOW_CONFIDENCE)
+            return "open", 0.9
+        return state, conf
 
     def _hand(self, det: Detections, p: Percept) -> HandPercept:
         h = det.hand
@@ -214,11 +213,8 @@ class Vision:
 
 
 # ---------------------------------------------------------------------------- building the library
-def build_library(seed: int = 0, n_scenes: int = 4860, root=None, progress=None) -> list:
-    """Calibrate, render library scenes, and write prototypes + examples to assets/templates/.
-
-    The committed library has 4860 scenes (540 per hand posture): the hand posture network fits
-    markedly better than on 1620 (93.1% vs 90.5% on the benchmark's 500 frames)."""
+def build_library(seed: int = 0, n_scenes: int = 1620, root=None, progress=None) -> list:
+    """Calibrate, render library scenes, and write prototypes + examples to assets/templates/."""
     from assistbot.vision.calibration import calibrate
     from assistbot.vision.capture import StereoCapture
     from assistbot.vision.scenes import POSTURES, SceneSampler, pose
