@@ -42,6 +42,7 @@ class RobotExecutor:
         self.records: list[ActionRecord] = []
         self._percept: Percept | None = None
         self._last_seen: dict[str, tuple[float, float]] = {}
+        self._held_out_seen = False  # the object the person holds out has been seen during this action
 
     # -- what the robot knows of its own body ------------------------------------------------
     def holding(self) -> str | None:
@@ -62,6 +63,10 @@ class RobotExecutor:
             held = p.objects.get(p.hand.object_in_hand) if p.hand.object_in_hand else None
             if held is not None and held.seen:   # grasp the object itself, placed better than the hand
                 return (held.position[0], held.position[1])
+            if self._held_out_seen:
+                # the object hidden for a moment (often by the robot's own approaching hand): the target
+                # field keeps where it was; the hand's position is too rough to reach for (~6 cm)
+                return None
             return tuple(p.hand.position[:2])
         o = p.objects.get(obj)
         if o is None or not o.seen:
@@ -103,6 +108,7 @@ class RobotExecutor:
             self._speech_until = t + (WAIT_SECONDS if action == "Wait" else reading_time(utterance or action))
             return
         cls, obj = spec
+        self._held_out_seen = False
         self.primitive = cls(self.robot, obj, human_holds=lambda o=obj: self._human_holds(o),
                              locate=self._locate, stopper_removed=self._stopper_removed)
         # hidden right now (often behind the robot's own arm): start from where it was last seen;
@@ -111,6 +117,9 @@ class RobotExecutor:
 
     def see(self, percept: Percept) -> None:
         self._percept = percept
+        h = percept.hand
+        if h.seen and h.object_in_hand and percept.objects[h.object_in_hand].seen:
+            self._held_out_seen = True
         for name, o in percept.objects.items():
             if o.seen:
                 self._last_seen[name] = (o.position[0], o.position[1])
