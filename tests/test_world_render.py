@@ -58,6 +58,7 @@ def test_particles_left_out_of_the_scene_are_ones_no_camera_sees(renderer_and_wo
     r, worlds = renderer_and_worlds
     for w in worlds:
         w.step(50)
+        w.sync_liquid()   # what every render of a stepped world does first
         m, geoms = w.model, w.particle_geoms
         left_out = m.geom_rgba[geoms, 3] == 0
         assert left_out.sum() >= len(geoms) // 2

@@ -116,6 +116,7 @@ def run(args: argparse.Namespace) -> int:
             def tick(t: float) -> None:
                 human_part(t)
                 if frames["k"] % 2 == 0:
+                    world.sync_liquid()
                     w.append_data(renderer.rgb(world.data, "scene_cam"))
                 frames["k"] += 1
 

@@ -86,6 +86,7 @@ def run(args: argparse.Namespace) -> int:
                 if state["k"] % every == 0:
                     if state["renderer"] is None:
                         state["renderer"] = Renderer(world.model, width, height)
+                    world.sync_liquid()
                     frame = state["renderer"].rgb(world.data, args.camera)
                     b = hc.current or (hc.done[-1] if hc.done else None)
                     status = "" if b is None else f"{b.name}: {b.status}"

@@ -36,6 +36,7 @@ class VideoRecorder:
         self.header_base = f"{episode.scenario.name}  |  seed {episode.seed}  |  {label}"
 
     def __call__(self, ep: Episode) -> None:
+        ep.world.sync_liquid()
         scene = self.renderer.rgb(ep.world.data, "scene_cam")
         camera = ep.perception.overlay()
         if camera is None:

@@ -29,6 +29,7 @@ class VisionPerception:
         self.render_seconds = 0.0
 
     def perceive(self, t: float, robot: dict) -> Percept:
+        self.world.sync_liquid()
         frame = self.capture.grab(self.world.data)
         self.render_seconds = frame.render_ms / 1000.0  # of this call, for the episode's wall-time split
         tcp = self.world.data.site_xpos[self._tcp_site].copy()  # forward kinematics of the robot's own arm

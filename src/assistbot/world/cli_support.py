@@ -43,6 +43,7 @@ def write_png(world, path: Path, camera: str = "scene_cam", width: int = 640, he
     from assistbot.world.render import Renderer
 
     path.parent.mkdir(parents=True, exist_ok=True)
+    world.sync_liquid()
     with Renderer(world.model, width, height) as r:
         iio.imwrite(path, r.rgb(world.data, camera))
     return path

@@ -229,6 +229,9 @@ class World:
     def sync_liquid(self) -> None:
         """Set the rendered liquid level in the glass from the particles inside it (see objects.xml).
 
+        Renders only: call it before rendering a world that has been stepped (the physics does
+        not, so that it costs nothing between frames).
+
         Particles no camera can see (drunk, wholly inside the opaque body of the bottle, or
         wholly under the rendered liquid surface) are left out of the rendered scene: a renderer
         on the CPU pays for every sphere's vertices, hidden or not.  Rendering only; the
@@ -261,7 +264,6 @@ class World:
         if d.eq_active[self._eq_hold_ids].any() and not self.hand_closed():
             self.human_release()
         self._drink()
-        self.sync_liquid()
 
     def stopper_pull_force(self) -> float:
         """The stopper fit's constraint force along the bottle's axis, pulling the stopper out (N)."""
