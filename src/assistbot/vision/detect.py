@@ -30,7 +30,7 @@ import numpy as np
 
 cv2.setNumThreads(1)   # per-frame work on small images: OpenCV's thread pool costs more than it saves
 
-from assistbot.vision.camera import CameraModel, on_plane, triangulate
+from assistbot.vision.camera import CameraModel
 from assistbot.vision.segment import LABEL, Blob, ColourTable, components_tiled
 from assistbot.world import layout
 
@@ -51,6 +51,9 @@ STATIC_SKIN_R = 0.08       # m: skin this close to a calibrated static spot is n
 HAND_REACH = 0.10          # m: hand crop half-size
 _B, _S, _G, _L, _K, _T = (LABEL[p] for p in ("bottle", "stopper", "glass", "liquid", "skin", "shirt"))
 _DILATE = np.ones((5, 5), np.uint8)
+_DILATE3 = np.ones((3, 3), np.uint8)
+#: label -> "is one of these parts", per part set used for a silhouette
+_PART_SET = {ps: np.isin(np.arange(256), ps) for ps in ((_B,), (_G, _L))}
 _ANG = np.linspace(0, 2 * np.pi, 8, endpoint=False)
 #: an upright object's outline points (base and top rings) relative to its base centre
 _OUTLINE = {n: np.vstack([np.column_stack([layout.OBJECT_RADIUS[n] * np.cos(_ANG), layout.OBJECT_RADIUS[n] * np.sin(_ANG), np.full(8, z)])
@@ -92,6 +95,60 @@ class Detections:
     labels: tuple[np.ndarray, np.ndarray] | None = None   # half-resolution label images
 
 
+class _Stereo:
+    """The two cameras' rays and triangulation with per-frame precomputed matrices (the same maths as
+    `camera.ray` / `camera.triangulate`, without their per-call set-up: many small calls a frame)."""
+
+    def __init__(self, cams: tuple[CameraModel, CameraModel]) -> None:
+        self.cams = cams
+        self.Q = [np.linalg.inv(c.K).T @ c.R for c in cams]     # homogeneous pixel (row) -> ray direction
+        self.C = [c.C for c in cams]
+        self.P = [c.P for c in cams]                            # table point -> homogeneous pixel
+
+    def expected_box(self, i: int, base: np.ndarray, name: str) -> tuple[float, float]:
+        """(width, height) in pixels of an upright object of type name standing at base, in camera i."""
+        P = self.P[i]
+        h = (base + _OUTLINE[name]) @ P[:, :3].T + P[:, 3]
+        z = h[:, 2]
+        if z.min() <= 1e-6:
+            return 1.0, 1.0
+        u, v = h[:, 0] / z, h[:, 1] / z
+        return float(u.max() - u.min()), float(v.max() - v.min())
+
+    def ray(self, i: int, uv) -> np.ndarray:
+        Q = self.Q[i]
+        d = np.reshape(uv, (-1, 2)) @ Q[:2] + Q[2]
+        return d / np.sqrt((d * d).sum(axis=1, keepdims=True))
+
+    def triangulate(self, uv_left, uv_right) -> np.ndarray:
+        """(N, 3) points closest to both rays (the midpoint of their common perpendicular)."""
+        d1, d2 = self.ray(0, uv_left), self.ray(1, uv_right)
+        c1, c2 = self.C
+        w0 = c1 - c2
+        b = (d1 * d2).sum(axis=1)              # unit rays: a = c = 1
+        d = d1 @ w0
+        e = d2 @ w0
+        den = np.maximum(1.0 - b * b, 1e-12)
+        s = ((b * e - d) / den)[:, None]
+        t = ((e - b * d) / den)[:, None]
+        return 0.5 * (c1 + c2 + s * d1 + t * d2)
+
+    def on_plane(self, i: int, uv, z: float) -> np.ndarray:
+        d = self.ray(i, uv)
+        C = self.C[i]
+        s = (z - C[2]) / np.where(np.abs(d[:, 2]) > 1e-9, d[:, 2], np.nan)
+        return C + s[:, None] * d
+
+
+def _pct(x: np.ndarray, q: float) -> float:
+    """np.percentile(x, q) (linear interpolation) of a small 1-D array, without its overhead."""
+    x = np.sort(x, axis=None)
+    k = (x.size - 1) * q / 100.0
+    lo = int(k)
+    hi = min(lo + 1, x.size - 1)
+    return float(x[lo] + (k - lo) * (x[hi] - x[lo]))
+
+
 def _crop(img: np.ndarray, x0: int, y0: int, x1: int, y1: int, size: tuple[int, int]) -> np.ndarray:
     h, w = img.shape[:2]
     pad = [max(0, -y0), max(0, y1 - h), max(0, -x0), max(0, x1 - w)]
@@ -117,15 +174,6 @@ def _match(a: Blob, cands: list[Blob]) -> Blob | None:
     return best
 
 
-def _expected_box(cam: CameraModel, base: np.ndarray, name: str) -> tuple[float, float]:
-    """(width, height) in pixels of an upright object of type name standing at base."""
-    pts = base + _OUTLINE[name]
-    uv = cam.project(pts)
-    if not np.all(np.isfinite(uv)):
-        return 1.0, 1.0
-    return float(np.ptp(uv[:, 0])), float(np.ptp(uv[:, 1]))
-
-
 class _Roi:
     """A blob re-labelled at full resolution: its mask, edges and neighbours."""
 
@@ -136,23 +184,22 @@ class _Roi:
         x1, y1 = min(W, x + w + 4), min(H, y + h + 4)
         self.img = img[self.y0:y1, self.x0:x1]
         self.lab = table.labels(self.img)
-        m = self.lab == parts[0]
-        for p in parts[1:]:
-            m |= self.lab == p
+        m = _PART_SET[parts][self.lab]          # one gather: the label is one of the parts
         self.mask = m
-        rows = np.flatnonzero(m.any(axis=1))
-        cols = np.flatnonzero(m.any(axis=0))
-        self.ok = rows.size > 0
+        m8 = m.view(np.uint8)
+        bx, by, bw, bh = cv2.boundingRect(m8)   # the silhouette's extent
+        self.ok = bw > 0
         if not self.ok:
             return
-        self.top_r, self.bot_r = int(rows[0]), int(rows[-1])
-        self.w = float(cols[-1] - cols[0] + 1)
-        self.h = float(self.bot_r - self.top_r + 1)
-        bu = np.flatnonzero(m[max(self.top_r, self.bot_r - 1):self.bot_r + 1].any(axis=0))
-        tu = np.flatnonzero(m[self.top_r:self.top_r + 2].any(axis=0))
-        self.bottom = np.array([self.x0 + 0.5 * (bu[0] + bu[-1]), self.y0 + self.bot_r + 0.5])
-        self.top = np.array([self.x0 + 0.5 * (tu[0] + tu[-1]), self.y0 + self.top_r - 0.5])
-        mo = cv2.moments(m.view(np.uint8), binaryImage=True)
+        self.top_r, self.bot_r = by, by + bh - 1
+        self.w = float(bw)
+        self.h = float(bh)
+        # the bottom (top) two rows' leftmost and rightmost pixels
+        _, _, bw2, _ = bb = cv2.boundingRect(m8[max(self.top_r, self.bot_r - 1):self.bot_r + 1])
+        _, _, tw2, _ = tb = cv2.boundingRect(m8[self.top_r:self.top_r + 2])
+        self.bottom = np.array([self.x0 + bb[0] + 0.5 * (bw2 - 1), self.y0 + self.bot_r + 0.5])
+        self.top = np.array([self.x0 + tb[0] + 0.5 * (tw2 - 1), self.y0 + self.top_r - 0.5])
+        mo = cv2.moments(m8, binaryImage=True)
         n = mo["m00"]
         self.centroid = np.array([mo["m10"] / n + self.x0 + 0.5, mo["m01"] / n + self.y0 + 0.5])
         self.tilt = 0.0
@@ -186,7 +233,8 @@ class _Roi:
         v, u = self.axis()
         if v.size < AXIS_ROWS:
             return self.tilt
-        slope = np.polyfit(v.astype(float), u, 1)[0]
+        dv = v - v.mean()
+        slope = float(dv @ (u - u.mean())) / float(dv @ dv)   # the least-squares line's slope
         return float(np.arctan(abs(slope)))
 
     def axis(self) -> tuple[np.ndarray, np.ndarray]:
@@ -201,7 +249,7 @@ class _Roi:
         first = sub.argmax(axis=1)
         last = m.shape[1] - 1 - sub[:, ::-1].argmax(axis=1)
         width = last - first + 1
-        full = np.percentile(width, 80)
+        full = _pct(width, 80)
         ok = np.abs(width - full) <= max(1.5, 0.12 * full)
         self._axis = (self.y0 + rows[ok], self.x0 + 0.5 * (first[ok] + last[ok]) + 0.5)
         return self._axis
@@ -216,15 +264,16 @@ class Detector:
 
     def __call__(self, left: np.ndarray, right: np.ndarray, cams: tuple[CameraModel, CameraModel]) -> Detections:
         imgs = (left, right)
+        st = _Stereo(cams)
         lab = tuple(self.table.labels(im, 2) for im in imgs)
         det = Detections(labels=lab)
         # one connected-components pass for both cameras and all parts (masks tiled side by side)
         tiles, views = components_tiled([[L == _B, (L == _G) | (L == _L), L == _K] for L in lab],
-                                        ("bottle", "glass", "skin"), (2, 2, 6))
+                                        ("bottle", "glass", "skin"), (2, 2, 6), pairs_only=True)
         blobs = [{"bottle": t[0], "glass": t[1], "skin": (t[2], v[2])} for t, v in zip(tiles, views)]
         for name in ("bottle", "glass"):
-            det.objects[name] = self._object(name, blobs, imgs, cams)
-        det.hand = self._hand(blobs, lab, imgs, cams, det)
+            det.objects[name] = self._object(name, blobs, imgs, st)
+        det.hand = self._hand(blobs, lab, imgs, st, det)
         for o in det.objects.values():
             self._held(o, det.hand)
         return det
@@ -239,7 +288,8 @@ class Detector:
                          and o.tilt < MAX_TILT and o.position[2] > 0.02)
 
     # ------------------------------------------------------------------ objects
-    def _object(self, name, blobs, imgs, cams) -> ObjectDetection:
+    def _object(self, name, blobs, imgs, st: _Stereo) -> ObjectDetection:
+        cams = st.cams
         bl, br = blobs[0][name], blobs[1][name]
         if not bl or not br:
             return ObjectDetection(name, False, blobs=(bl[0] if bl else None, None))
@@ -257,26 +307,30 @@ class Detector:
             if name == "bottle":
                 r.cap(_S)
             rois.append(r)
-        Xb, Xt = triangulate(cams[0], cams[1], np.array([rois[0].bottom, rois[0].top]), np.array([rois[1].bottom, rois[1].top]))
+        Xb, Xt = st.triangulate(np.array([rois[0].bottom, rois[0].top]), np.array([rois[1].bottom, rois[1].top]))
         r_obj = layout.OBJECT_RADIUS[name]
         on_table = abs(Xb[2]) < ON_TABLE_TOL
         if on_table:
             pts = []
-            for cam, roi in zip(cams, rois):
-                P = on_plane(cam, roi.bottom, 0.0)[0]
+            for i, (cam, roi) in enumerate(zip(cams, rois)):
+                P = st.on_plane(i, roi.bottom, 0.0)[0]
                 hdir = P[:2] - cam.C[:2]
                 P[:2] += r_obj * hdir / np.linalg.norm(hdir)
                 pts.append(P)
             pos = np.mean(pts, axis=0)
         else:   # lifted: x, y from the axis in both images; the height from the silhouette's centroid
-            pos = triangulate(cams[0], cams[1], rois[0].centroid, rois[1].centroid)[0]
+            pos = st.triangulate(rois[0].centroid, rois[1].centroid)[0]
             pos[2] -= CENTROID_Z[name]
             (vl, ul), (vr, ur) = rois[0].axis(), rois[1].axis()
             # the head's cameras are parallel and side by side, so a point shows in the same row of both
-            common, il, ir = np.intersect1d(vl, vr, return_indices=True)
+            # rows in both (sorted, unique): where each of vl is in vr
+            ir = np.minimum(np.searchsorted(vr, vl), max(0, vr.size - 1))
+            il = np.flatnonzero(vr[ir] == vl) if vr.size else np.zeros(0, int)
+            ir = ir[il]
+            common = vl[il]
             if common.size >= AXIS_ROWS:
                 v = common + 0.5
-                X = triangulate(cams[0], cams[1], np.column_stack([ul[il], v]), np.column_stack([ur[ir], v]))
+                X = st.triangulate(np.column_stack([ul[il], v]), np.column_stack([ur[ir], v]))
                 pos[:2] = np.median(X[:, :2], axis=0)
             else:
                 hdir = pos[:2] - 0.5 * (cams[0].C[:2] + cams[1].C[:2])
@@ -284,8 +338,8 @@ class Detector:
         extent = 9.0
         H, W = imgs[0].shape[:2]
         inside = True
-        for cam, roi, bb in zip(cams, rois, (a, b)):
-            ew, eh = _expected_box(cam, pos, name)
+        for i, (roi, bb) in enumerate(zip(rois, (a, b))):
+            ew, eh = st.expected_box(i, pos, name)
             extent = min(extent, roi.h_capped / max(eh, 1.0), roi.w / max(ew, 1.0))
             x, y, w, h = bb.bbox
             inside &= x > 1 and y > 1 and x + w < W - 1 and y + h < H - 1
@@ -323,27 +377,32 @@ class Detector:
         width_top = float(rows[:third].sum()) / third
         width_bot = float(rows[-third:].sum()) / third
         shape = (width_top - width_bot) / max(1.0, roi.w)
-        rgb = roi.img.astype(np.float32)
-        mx = rgb.max(axis=2)
-        sat = (mx - rgb.min(axis=2)) / np.maximum(mx, 1.0)
+        r, g, b = cv2.split(roi.img)
+        mx = cv2.max(cv2.max(r, g), b).astype(np.float32)
+        sat = (mx - cv2.min(cv2.min(r, g), b)) / np.maximum(mx, 1.0)
         det.crop = _crop(sat * m, 0, roi.top_r - 1, m.shape[1], roi.bot_r + 2, CROP["glass"])
         det.feat = np.array([max(liq), min(liq), shape, det.tilt, float(pos[2])], np.float32)
 
     # ------------------------------------------------------------------ hand
-    def _hand(self, blobs, lab, imgs, cams, det: Detections) -> HandDetection:
+    def _hand(self, blobs, lab, imgs, st: _Stereo, det: Detections) -> HandDetection:
+        cams = st.cams
         (bl, cl), (br, cr) = blobs[0]["skin"], blobs[1]["skin"]
         best = None
         pairs = [(a, b) for a in bl for b in (_match(a, br),) if b is not None]
         if pairs:   # all candidates triangulated at once
-            Xs = triangulate(cams[0], cams[1], np.array([a.centroid for a, _ in pairs]), np.array([b.centroid for _, b in pairs]))
-            for (a, b), X in zip(pairs, Xs):
+            Xs = st.triangulate(np.array([a.centroid for a, _ in pairs]), np.array([b.centroid for _, b in pairs]))
+            near_static = np.zeros(len(pairs), bool)
+            if len(self.static_skin):
+                d2 = ((Xs[:, None, :] - self.static_skin[None]) ** 2).sum(-1)
+                near_static = d2.min(axis=1) < STATIC_SKIN_R ** 2
+            for (a, b), X, ns in zip(pairs, Xs, near_static):
                 if not (-0.05 < X[2] < 0.7 and -0.7 < X[0] < 0.3 and abs(X[1]) < 0.7):
                     continue      # not over the table: floor, background
                 if X[2] > FACE_Z:
                     continue      # the face (a hand at the mouth merges with it: the drink is read from the glass)
                 if min(a.bbox[1], b.bbox[1]) <= 1:
                     continue      # cut by the image's top: the face with the head tilted down (its centroid then misses the static spot)
-                if len(self.static_skin) and np.min(np.linalg.norm(self.static_skin - X, axis=1)) < STATIC_SKIN_R:
+                if ns:
                     continue
                 if best is None or a.area > best[0].area:
                     best = (a, b, X)
@@ -358,23 +417,27 @@ class Detector:
             skin = cc[y0:y1, x0:x1] == bb.label        # this blob's own pixels (from the one components pass)
             ys, xs = np.nonzero(skin)
             P = np.column_stack([xs + x0, ys + y0]).astype(float) * 2 + 0.5
-            sleeve = cv2.dilate((sub == _T).view(np.uint8), np.ones((3, 3), np.uint8)) > 0
+            sleeve = cv2.dilate((sub == _T).view(np.uint8), _DILATE3) > 0
             touch = np.nonzero(skin & sleeve)
             if len(touch[0]) >= 2:
                 root = np.array([touch[1].mean() + x0, touch[0].mean() + y0]) * 2 + 0.5
             else:
                 tm = cv2.moments((L == _T).view(np.uint8), binaryImage=True)
                 root = np.array([tm["m10"] / tm["m00"], tm["m01"] / tm["m00"]]) * 2 if tm["m00"] > 0 else bb.centroid + [0, -40]
-            dist = np.linalg.norm(P - root, axis=1)
-            far = P[dist >= np.percentile(dist, 75)]
-            ends.append(far.mean(axis=0))
+            dp = P - root
+            dist2 = np.einsum("ij,ij->i", dp, dp)       # squared: the same 75th-percentile selection as distances
+            far = P[dist2 >= _pct(dist2, 75)]
+            end = far.mean(axis=0)
+            ends.append(end)
             roots.append(root)
             if not spread:   # the hand's own outline (left camera): spread along and across the arm, in px
-                ax = far.mean(axis=0) - root
-                ax = ax / max(1e-6, float(np.linalg.norm(ax)))
-                q = far - far.mean(axis=0)
-                spread = [float(np.std(q @ ax)), float(np.std(q @ np.array([-ax[1], ax[0]]))), float(len(far))]
-        Xd, Xr = triangulate(cams[0], cams[1], np.array([ends[0], roots[0]]), np.array([ends[1], roots[1]]))
+                ax = end - root
+                ax = ax / max(1e-6, float(np.hypot(ax[0], ax[1])))
+                q = far - end
+                pr = q @ np.array([[ax[0], -ax[1]], [ax[1], ax[0]]])
+                sd = pr.std(axis=0)
+                spread = [float(sd[0]), float(sd[1]), float(len(far))]
+        Xd, Xr = st.triangulate(np.array([ends[0], roots[0]]), np.array([ends[1], roots[1]]))
         depth = float(np.linalg.norm(Xd - cams[0].C))
         half = int(round(cams[0].K[0, 0] * HAND_REACH / depth))
         u, v = (int(round(c)) for c in ends[0])

@@ -110,22 +110,23 @@ class Vision:
         """State and confidence.  Bottle: red touching it in either camera is the stopper (closed);
         no red with the hand at the bottle's top (stereo: within `HAND_AT_TOP` m) means the stopper
         may be hidden in the hand: the state then comes with a low confidence; else open."""
-        state, conf, _ = self.classifiers[name].classify(d.crop, d.feat)
-        if name == "bottle":
-            hand_at_top = bool(hand.visible and np.linalg.norm(hand.position - (d.position + [0, 0, 0.19])) < HAND_AT_TOP)
-            # lifted in the person's hand: a grip from above covers the stopper wherever vision puts the hand
-            hand_at_top |= bool(hand.visible and not d.on_table
-                                and np.linalg.norm(hand.position - (d.position + [0, 0, CENTROID_Z["bottle"]])) < HELD_DIST)
-            both = min(d.stopper) >= STOPPER_SEEN
-            one = max(d.stopper) >= STOPPER_SEEN
-            if both:
-                return "closed", 0.95
-            if one and hand_at_top:
-                return "closed", 0.7       # the stopper shows beside the hand in one camera
-            if one or hand_at_top:
-                return state, min(conf, LOW_CONFIDENCE)
-            return "open", 0.9
-        return state, conf
+        if name != "bottle":
+            state, conf, _ = self.classifiers[name].classify(d.crop, d.feat)
+            return state, conf
+        hand_at_top = bool(hand.visible and np.linalg.norm(hand.position - (d.position + [0, 0, 0.19])) < HAND_AT_TOP)
+        # lifted in the person's hand: a grip from above covers the stopper wherever vision puts the hand
+        hand_at_top |= bool(hand.visible and not d.on_table
+                            and np.linalg.norm(hand.position - (d.position + [0, 0, CENTROID_Z["bottle"]])) < HELD_DIST)
+        both = min(d.stopper) >= STOPPER_SEEN
+        one = max(d.stopper) >= STOPPER_SEEN
+        if both:
+            return "closed", 0.95
+        if one and hand_at_top:
+            return "closed", 0.7       # the stopper shows beside the hand in one camera
+        if one or hand_at_top:       # the classifier only where the stopper's pixels do not decide
+            state, conf, _ = self.classifiers[name].classify(d.crop, d.feat)
+            return state, min(conf, LOW_CONFIDENCE)
+        return "open", 0.9
 
     def _hand(self, det: Detections, p: Percept) -> HandPercept:
         h = det.hand

@@ -81,35 +81,37 @@ def components(mask: np.ndarray, part: str, keep: int = 4, scale: int = 2) -> tu
     return res, lab
 
 
-def components_tiled(masks: list[list[np.ndarray]], parts: tuple[str, ...], keep: tuple[int, ...], scale: int = 2):
-    """Connected components of several (half-resolution) masks in ONE pass: masks[camera][k] are
-    tiled into one image with 1-px gaps (components cannot cross a gap).  Returns, per camera and
-    part, the `keep[k]` largest blobs (full-resolution pixels; ``Blob.label`` indexes the views) and
-    per camera and part a view of the label image over that mask."""
-    H, W = masks[0][0].shape
-    nc, nk = len(masks), len(parts)
-    big = np.zeros((nc * (H + 1), nk * (W + 1)), np.uint8)
-    for c in range(nc):
-        for k in range(nk):
-            big[c * (H + 1):c * (H + 1) + H, k * (W + 1):k * (W + 1) + W] = masks[c][k]
-    # Grana's algorithm: ~3x faster than the default on these sparse masks
-    n, lab, stats, cents = cv2.connectedComponentsWithStatsWithAlgorithm(big, 8, cv2.CV_32S, cv2.CCL_GRANA)
-    views = [[lab[c * (H + 1):c * (H + 1) + H, k * (W + 1):k * (W + 1) + W] for k in range(nk)] for c in range(nc)]
-    out: list[list[list[Blob]]] = [[[] for _ in range(nk)] for _ in range(nc)]
-    if n <= 1:
-        return out, views
-    cam = stats[1:, cv2.CC_STAT_TOP] // (H + 1)
-    part = stats[1:, cv2.CC_STAT_LEFT] // (W + 1)
-    areas = stats[1:, cv2.CC_STAT_AREA]
-    min_area = np.array([MIN_AREA[p] for p in parts])[part]
-    for i in np.flatnonzero(areas >= min_area)[np.argsort(-areas[areas >= min_area], kind="stable")]:
-        c, k = int(cam[i]), int(part[i])
-        if len(out[c][k]) >= keep[k]:
-            continue
-        x, y, w, h = (int(v) for v in stats[i + 1, :4])
-        x -= k * (W + 1)
-        y -= c * (H + 1)
-        cent = cents[i + 1] - [k * (W + 1), c * (H + 1)]
-        out[c][k].append(Blob(parts[k], float(areas[i]) * scale * scale, (cent + 0.5) * scale - 0.5,
-                              (x * scale, y * scale, w * scale, h * scale), int(i + 1)))
+def components_tiled(masks: list[list[np.ndarray]], parts: tuple[str, ...], keep: tuple[int, ...], scale: int = 2,
+                     pairs_only: bool = False):
+    """Connected components of several (half-resolution) masks: masks[camera][k].  Returns, per camera
+    and part, the `keep[k]` largest blobs (full-resolution pixels; ``Blob.label`` indexes the views) and
+    per camera and part the label image of that mask (its view).
+
+    One connected-components call per mask (Grana's algorithm, ~3x faster than the default on these
+    sparse masks): measured faster than one call on the masks tiled into one image (~0.3 vs ~0.9 ms
+    for 2 x 3 masks of 160x120).  An empty mask, and with ``pairs_only`` a later camera's mask of a
+    part the first camera has no blob of (nothing to pair it with), get no blobs and a zero view
+    without the call."""
+    out: list[list[list[Blob]]] = []
+    views = []
+    for c, cm in enumerate(masks):
+        oc, vc = [], []
+        for k, m in enumerate(cm):
+            if (pairs_only and c > 0 and not out[0][k]) or not m.any():
+                oc.append([])
+                vc.append(np.zeros(m.shape, np.int32))
+                continue
+            n, lab, stats, cents = cv2.connectedComponentsWithStatsWithAlgorithm(m.view(np.uint8), 8, cv2.CV_32S, cv2.CCL_GRANA)
+            vc.append(lab)
+            res: list[Blob] = []
+            if n > 1:
+                areas = stats[1:, cv2.CC_STAT_AREA]
+                ok = np.flatnonzero(areas >= MIN_AREA[parts[k]])
+                for i in ok[np.argsort(-areas[ok], kind="stable")][:keep[k]]:
+                    x, y, w, h = (int(v) * scale for v in stats[i + 1, :4])
+                    res.append(Blob(parts[k], float(areas[i]) * scale * scale, (cents[i + 1] + 0.5) * scale - 0.5,
+                                    (x, y, w, h), int(i + 1)))
+            oc.append(res)
+        out.append(oc)
+        views.append(vc)
     return out, views
