@@ -118,7 +118,8 @@ class RobotExecutor:
     def see(self, percept: Percept) -> None:
         self._percept = percept
         h = percept.hand
-        if h.seen and h.object_in_hand and percept.objects[h.object_in_hand].seen:
+        held = percept.objects.get(h.object_in_hand) if h.seen and h.object_in_hand else None
+        if held is not None and held.seen:
             self._held_out_seen = True
         for name, o in percept.objects.items():
             if o.seen:

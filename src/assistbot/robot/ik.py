@@ -8,8 +8,9 @@ keeps ``human_clearance`` (m) from the human's head and torso, the hand
 keeps ``table_clearance`` and the forearm 3 cm from the table top (the hand
 may go near it to grasp), and the forearm and hand keep ``body_clearance``
 from the robot's own column and pedestal (an object close to the robot is
-otherwise reached with the elbow folded into the column). A QP without a solution (`mink.NoSolutionFound`) is reported in
-the `IKResult`, never raised; the commanded configuration then stays put.
+otherwise reached with the elbow folded into the column). A QP without a
+solution (`mink.NoSolutionFound`) is reported in the `IKResult`, never
+raised; the commanded configuration then stays put.
 """
 
 from __future__ import annotations
@@ -88,7 +89,8 @@ class ArmIK:
                                          collision_detection_distance=p.body_clearance + 0.1),
         ]
         # cheap pre-check per collision limit: the arm's bounding spheres against the human's (a lower
-        # bound on the distance), or the hand's/forearm's lowest point against the table top (static)
+        # bound on the distance), the hand's/forearm's lowest point against the table top (static), or
+        # their horizontal distance from the column's axis
         m = self.model
         gid = lambda names: np.array([m.geom(g).id for g in names])  # noqa: E731
         d0 = self.configuration.data

@@ -229,13 +229,11 @@ class World:
     def sync_liquid(self) -> None:
         """Set the rendered liquid level in the glass from the particles inside it (see objects.xml).
 
-        Renders only: call it before rendering a world that has been stepped (the physics does
-        not, so that it costs nothing between frames).
-
         Particles no camera can see (drunk, wholly inside the opaque body of the bottle, or
         wholly under the rendered liquid surface) are left out of the rendered scene: a renderer
-        on the CPU pays for every sphere's vertices, hidden or not.  Rendering only; the
-        physics is unchanged and the images are the same pixel for pixel."""
+        on the CPU pays for every sphere's vertices, hidden or not; the images are the same
+        pixel for pixel.  For rendering only, so stepping does not call it (it would cost as much
+        as a fifth of the physics): call it before rendering a world that has been stepped."""
         m, d = self.model, self.data
         pts = d.xpos[self.particle_bodies]
         inside = in_glass_region(self, pts) & ~self.drunk
