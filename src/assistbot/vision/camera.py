@@ -12,6 +12,7 @@ forward kinematics from the model's head bodies and the pan/tilt joint angles in
 from __future__ import annotations
 
 from dataclasses import dataclass
+from functools import cached_property
 
 import mujoco
 import numpy as np
@@ -48,10 +49,16 @@ class CameraModel:
         C[2] -= TABLE_Z
         return cls(camera, width, height, cls.intrinsics(model, camera, width, height), _FLIP @ Rc.T, C)
 
-    @property
+    @cached_property
     def P(self) -> np.ndarray:
         """3x4 projection matrix (table frame -> homogeneous pixels)."""
         return self.K @ np.hstack([self.R, (-self.R @ self.C)[:, None]])
+
+    @cached_property
+    def _Q(self) -> np.ndarray:
+        """Homogeneous pixel (as a row) -> ray direction in the table frame: inv(K).T @ R (computed once:
+        vision casts many small batches of rays a frame)."""
+        return np.linalg.inv(self.K).T @ self.R
 
     def project(self, X: np.ndarray) -> np.ndarray:
         """(N, 3) table points -> (N, 2) pixels (u, v); points behind the camera give nan."""
@@ -64,10 +71,18 @@ class CameraModel:
 
     def ray(self, uv) -> np.ndarray:
         """Unit direction (table frame) of the ray through pixel(s) (N, 2)."""
-        uv = np.atleast_2d(np.asarray(uv, float))
-        K = self.K
-        d = np.column_stack([(uv[:, 0] - K[0, 2]) / K[0, 0], (uv[:, 1] - K[1, 2]) / K[1, 1], np.ones(len(uv))]) @ self.R  # optical -> table
-        return d / np.linalg.norm(d, axis=1, keepdims=True)
+        Q = self._Q
+        d = np.reshape(np.asarray(uv, float), (-1, 2)) @ Q[:2] + Q[2]
+        return d / np.sqrt((d * d).sum(axis=1, keepdims=True))
+
+    def expected_box(self, X: np.ndarray) -> tuple[float, float]:
+        """(width, height) in pixels of the image of the table points X (N, 3); (1, 1) if any is behind the camera."""
+        h = X @ self.P[:, :3].T + self.P[:, 3]
+        z = h[:, 2]
+        if z.min() <= 1e-6:
+            return 1.0, 1.0
+        u, v = h[:, 0] / z, h[:, 1] / z
+        return float(u.max() - u.min()), float(v.max() - v.min())
 
 
 def triangulate(left: CameraModel, right: CameraModel, uv_left, uv_right) -> np.ndarray:
@@ -75,15 +90,13 @@ def triangulate(left: CameraModel, right: CameraModel, uv_left, uv_right) -> np.
     d1, d2 = left.ray(uv_left), right.ray(uv_right)
     c1, c2 = left.C, right.C
     w0 = c1 - c2
-    a = np.einsum("ij,ij->i", d1, d1)
-    b = np.einsum("ij,ij->i", d1, d2)
-    c = np.einsum("ij,ij->i", d2, d2)
+    b = (d1 * d2).sum(axis=1)              # unit rays: d1.d1 = d2.d2 = 1
     d = d1 @ w0
     e = d2 @ w0
-    den = np.maximum(a * c - b * b, 1e-12)
-    s = (b * e - c * d) / den
-    t = (a * e - b * d) / den
-    return 0.5 * ((c1 + s[:, None] * d1) + (c2 + t[:, None] * d2))
+    den = np.maximum(1.0 - b * b, 1e-12)
+    s = ((b * e - d) / den)[:, None]
+    t = ((e - b * d) / den)[:, None]
+    return 0.5 * (c1 + c2 + s * d1 + t * d2)
 
 
 def on_plane(cam: CameraModel, uv, z: float) -> np.ndarray:

@@ -30,7 +30,7 @@ import numpy as np
 
 cv2.setNumThreads(1)   # per-frame work on small images: OpenCV's thread pool costs more than it saves
 
-from assistbot.vision.camera import CameraModel
+from assistbot.vision.camera import CameraModel, on_plane, triangulate
 from assistbot.vision.segment import LABEL, Blob, ColourTable, components_tiled
 from assistbot.world import layout
 
@@ -93,51 +93,6 @@ class Detections:
     objects: dict[str, ObjectDetection] = field(default_factory=dict)
     hand: HandDetection = field(default_factory=lambda: HandDetection(False))
     labels: tuple[np.ndarray, np.ndarray] | None = None   # half-resolution label images
-
-
-class _Stereo:
-    """The two cameras' rays and triangulation with per-frame precomputed matrices (the same maths as
-    `camera.ray` / `camera.triangulate`, without their per-call set-up: many small calls a frame)."""
-
-    def __init__(self, cams: tuple[CameraModel, CameraModel]) -> None:
-        self.cams = cams
-        self.Q = [np.linalg.inv(c.K).T @ c.R for c in cams]     # homogeneous pixel (row) -> ray direction
-        self.C = [c.C for c in cams]
-        self.P = [c.P for c in cams]                            # table point -> homogeneous pixel
-
-    def expected_box(self, i: int, base: np.ndarray, name: str) -> tuple[float, float]:
-        """(width, height) in pixels of an upright object of type name standing at base, in camera i."""
-        P = self.P[i]
-        h = (base + _OUTLINE[name]) @ P[:, :3].T + P[:, 3]
-        z = h[:, 2]
-        if z.min() <= 1e-6:
-            return 1.0, 1.0
-        u, v = h[:, 0] / z, h[:, 1] / z
-        return float(u.max() - u.min()), float(v.max() - v.min())
-
-    def ray(self, i: int, uv) -> np.ndarray:
-        Q = self.Q[i]
-        d = np.reshape(uv, (-1, 2)) @ Q[:2] + Q[2]
-        return d / np.sqrt((d * d).sum(axis=1, keepdims=True))
-
-    def triangulate(self, uv_left, uv_right) -> np.ndarray:
-        """(N, 3) points closest to both rays (the midpoint of their common perpendicular)."""
-        d1, d2 = self.ray(0, uv_left), self.ray(1, uv_right)
-        c1, c2 = self.C
-        w0 = c1 - c2
-        b = (d1 * d2).sum(axis=1)              # unit rays: a = c = 1
-        d = d1 @ w0
-        e = d2 @ w0
-        den = np.maximum(1.0 - b * b, 1e-12)
-        s = ((b * e - d) / den)[:, None]
-        t = ((e - b * d) / den)[:, None]
-        return 0.5 * (c1 + c2 + s * d1 + t * d2)
-
-    def on_plane(self, i: int, uv, z: float) -> np.ndarray:
-        d = self.ray(i, uv)
-        C = self.C[i]
-        s = (z - C[2]) / np.where(np.abs(d[:, 2]) > 1e-9, d[:, 2], np.nan)
-        return C + s[:, None] * d
 
 
 def _pct(x: np.ndarray, q: float) -> float:
@@ -264,7 +219,6 @@ class Detector:
 
     def __call__(self, left: np.ndarray, right: np.ndarray, cams: tuple[CameraModel, CameraModel]) -> Detections:
         imgs = (left, right)
-        st = _Stereo(cams)
         lab = tuple(self.table.labels(im, 2) for im in imgs)
         det = Detections(labels=lab)
         # one connected-components pass for both cameras and all parts (masks tiled side by side)
@@ -272,8 +226,8 @@ class Detector:
                                         ("bottle", "glass", "skin"), (2, 2, 6), pairs_only=True)
         blobs = [{"bottle": t[0], "glass": t[1], "skin": (t[2], v[2])} for t, v in zip(tiles, views)]
         for name in ("bottle", "glass"):
-            det.objects[name] = self._object(name, blobs, imgs, st)
-        det.hand = self._hand(blobs, lab, imgs, st, det)
+            det.objects[name] = self._object(name, blobs, imgs, cams)
+        det.hand = self._hand(blobs, lab, imgs, cams, det)
         for o in det.objects.values():
             self._held(o, det.hand)
         return det
@@ -288,8 +242,7 @@ class Detector:
                          and o.tilt < MAX_TILT and o.position[2] > 0.02)
 
     # ------------------------------------------------------------------ objects
-    def _object(self, name, blobs, imgs, st: _Stereo) -> ObjectDetection:
-        cams = st.cams
+    def _object(self, name, blobs, imgs, cams) -> ObjectDetection:
         bl, br = blobs[0][name], blobs[1][name]
         if not bl or not br:
             return ObjectDetection(name, False, blobs=(bl[0] if bl else None, None))
@@ -307,19 +260,19 @@ class Detector:
             if name == "bottle":
                 r.cap(_S)
             rois.append(r)
-        Xb, Xt = st.triangulate(np.array([rois[0].bottom, rois[0].top]), np.array([rois[1].bottom, rois[1].top]))
+        Xb, Xt = triangulate(cams[0], cams[1], np.array([rois[0].bottom, rois[0].top]), np.array([rois[1].bottom, rois[1].top]))
         r_obj = layout.OBJECT_RADIUS[name]
         on_table = abs(Xb[2]) < ON_TABLE_TOL
         if on_table:
             pts = []
-            for i, (cam, roi) in enumerate(zip(cams, rois)):
-                P = st.on_plane(i, roi.bottom, 0.0)[0]
+            for cam, roi in zip(cams, rois):
+                P = on_plane(cam, roi.bottom, 0.0)[0]
                 hdir = P[:2] - cam.C[:2]
                 P[:2] += r_obj * hdir / np.linalg.norm(hdir)
                 pts.append(P)
             pos = np.mean(pts, axis=0)
         else:   # lifted: x, y from the axis in both images; the height from the silhouette's centroid
-            pos = st.triangulate(rois[0].centroid, rois[1].centroid)[0]
+            pos = triangulate(cams[0], cams[1], rois[0].centroid, rois[1].centroid)[0]
             pos[2] -= CENTROID_Z[name]
             (vl, ul), (vr, ur) = rois[0].axis(), rois[1].axis()
             # the head's cameras are parallel and side by side, so a point shows in the same row of both
@@ -330,7 +283,7 @@ class Detector:
             common = vl[il]
             if common.size >= AXIS_ROWS:
                 v = common + 0.5
-                X = st.triangulate(np.column_stack([ul[il], v]), np.column_stack([ur[ir], v]))
+                X = triangulate(cams[0], cams[1], np.column_stack([ul[il], v]), np.column_stack([ur[ir], v]))
                 pos[:2] = np.median(X[:, :2], axis=0)
             else:
                 hdir = pos[:2] - 0.5 * (cams[0].C[:2] + cams[1].C[:2])
@@ -338,8 +291,8 @@ class Detector:
         extent = 9.0
         H, W = imgs[0].shape[:2]
         inside = True
-        for i, (roi, bb) in enumerate(zip(rois, (a, b))):
-            ew, eh = st.expected_box(i, pos, name)
+        for cam, roi, bb in zip(cams, rois, (a, b)):
+            ew, eh = cam.expected_box(pos + _OUTLINE[name])
             extent = min(extent, roi.h_capped / max(eh, 1.0), roi.w / max(ew, 1.0))
             x, y, w, h = bb.bbox
             inside &= x > 1 and y > 1 and x + w < W - 1 and y + h < H - 1
@@ -384,13 +337,12 @@ class Detector:
         det.feat = np.array([max(liq), min(liq), shape, det.tilt, float(pos[2])], np.float32)
 
     # ------------------------------------------------------------------ hand
-    def _hand(self, blobs, lab, imgs, st: _Stereo, det: Detections) -> HandDetection:
-        cams = st.cams
+    def _hand(self, blobs, lab, imgs, cams, det: Detections) -> HandDetection:
         (bl, cl), (br, cr) = blobs[0]["skin"], blobs[1]["skin"]
         best = None
         pairs = [(a, b) for a in bl for b in (_match(a, br),) if b is not None]
         if pairs:   # all candidates triangulated at once
-            Xs = st.triangulate(np.array([a.centroid for a, _ in pairs]), np.array([b.centroid for _, b in pairs]))
+            Xs = triangulate(cams[0], cams[1], np.array([a.centroid for a, _ in pairs]), np.array([b.centroid for _, b in pairs]))
             near_static = np.zeros(len(pairs), bool)
             if len(self.static_skin):
                 d2 = ((Xs[:, None, :] - self.static_skin[None]) ** 2).sum(-1)
@@ -437,7 +389,7 @@ class Detector:
                 pr = q @ np.array([[ax[0], -ax[1]], [ax[1], ax[0]]])
                 sd = pr.std(axis=0)
                 spread = [float(sd[0]), float(sd[1]), float(len(far))]
-        Xd, Xr = st.triangulate(np.array([ends[0], roots[0]]), np.array([ends[1], roots[1]]))
+        Xd, Xr = triangulate(cams[0], cams[1], np.array([ends[0], roots[0]]), np.array([ends[1], roots[1]]))
         depth = float(np.linalg.norm(Xd - cams[0].C))
         half = int(round(cams[0].K[0, 0] * HAND_REACH / depth))
         u, v = (int(round(c)) for c in ends[0])
