@@ -32,18 +32,22 @@ def main() -> None:
                     help="simulated seconds (default: the scenario's time limit; the episode ends earlier at the drink)")
     ap.add_argument("--video-seconds", type=float, default=10.0)
     ap.add_argument("--perception", choices=["vision", "oracle"], default="vision")
+    ap.add_argument("--set", action="append", default=[], metavar="PATH=VALUE",
+                    help="a parameter override as for assistbot run, e.g. vision.pipelined=false")
     args = ap.parse_args()
 
     from assistbot.episode import run_scenario
     from assistbot.episode.runner import Episode
     from assistbot.scenario import load_scenario
+    from assistbot.commands.run import parse_sets
     from assistbot.world import build_world
 
     sc = load_scenario(args.scenario)
     if args.seconds is not None:
         sc.time_limit = args.seconds
     t0 = time.perf_counter()
-    ep = Episode(sc, perception=args.perception)
+    overrides = parse_sets(args.set)
+    ep = Episode(sc, perception=args.perception, overrides=overrides)
     setup = time.perf_counter() - t0
     t0 = time.perf_counter()
     result = ep.run()
@@ -67,6 +71,10 @@ def main() -> None:
     other = total - sum(v for k, v in result.wall.items() if k != "video")
     print(f"{'loop/other':<14}{other:>9.2f}{other / total:>8.0%}{1000 * other / sim:>15.1f}")
     print(f"{'whole episode':<14}{total:>9.2f}")
+    drawn = getattr(ep.perception, "drawn_seconds", 0.0)
+    if getattr(ep.perception, "pipelined", False):
+        print(f"(the head cameras' pictures took {drawn:.2f} s on the render thread, {1000 * drawn / sim:.1f} ms per sim s; "
+              f"'rendering' above is what the loop waited for them)")
     print(f"physics alone: {physics_alone:.2f} s for the same {sim:.1f} simulated s ({sim / physics_alone:.1f}x real time)")
     print(f"episode / physics alone: {total / physics_alone:.2f} (goal <= 3)")
     print(f"real-time factor: {sim / total:.2f}x faster than real time (goal >= 2)")
@@ -75,7 +83,7 @@ def main() -> None:
     sc_v.time_limit = args.video_seconds
     with tempfile.TemporaryDirectory() as tmp:
         t0 = time.perf_counter()
-        r = run_scenario(sc_v, out=Path(tmp), perception=args.perception, video=True)
+        r = run_scenario(sc_v, out=Path(tmp), perception=args.perception, overrides=overrides, video=True)
         with_video = time.perf_counter() - t0
         frames = round(r.time * 10)
         print(f"with video: {with_video:.1f} s for {r.time:.1f} simulated s; video frames (render + compose + encode) "

@@ -79,7 +79,7 @@ def split_overrides(overrides: dict[str, Any], where: str) -> tuple[dict, dict, 
     from assistbot.cognition.config import CognitionConfig
 
     cog_paths = ["cognition." + p for p in CognitionConfig().paths()]
-    valid = cog_paths + [f"human.{p}" for p in HUMAN_PARAMS] + ["vision.dropout"]
+    valid = cog_paths + [f"human.{p}" for p in HUMAN_PARAMS] + ["vision.dropout", "vision.pipelined"]
     for path, value in overrides.items():
         if path in cog_paths:
             try:
@@ -93,6 +93,10 @@ def split_overrides(overrides: dict[str, Any], where: str) -> tuple[dict, dict, 
             if not isinstance(value, (int, float)) or not 0 <= value < 1:
                 raise UserError(where, path, f"a probability in [0, 1), got {value!r}")
             vis["dropout"] = float(value)
+        elif path == "vision.pipelined":
+            if not isinstance(value, bool):
+                raise UserError(where, path, f"true or false, got {value!r}")
+            vis["pipelined"] = value
         else:
             close = difflib.get_close_matches(path, valid, n=3)
             raise UserError(where, path, "unknown parameter path" + (f"; did you mean {', '.join(close)}?" if close else ""))

@@ -54,7 +54,7 @@ def valid_paths() -> list[str]:
     from assistbot.human.script import PARAMS as HUMAN_PARAMS
 
     return (["cognition." + p for p in CognitionConfig().paths()] + [f"human.{p}" for p in HUMAN_PARAMS]
-            + ["vision.dropout"] + list(OBJECT_PATHS))
+            + ["vision.dropout", "vision.pipelined"] + list(OBJECT_PATHS))
 
 
 def check_path(path: str, where: str) -> None:
@@ -224,6 +224,10 @@ def check_value(path: str, value: Any, where: str) -> Any:
     if path == "vision.dropout":
         if isinstance(value, bool) or not isinstance(value, (int, float)) or not 0 <= value < 1:
             raise UserError(where, path, f"a probability in [0, 1), got {value!r}")
+        return value
+    if path == "vision.pipelined":
+        if not isinstance(value, bool):
+            raise UserError(where, path, f"true or false, got {value!r}")
         return value
     return value  # objects.*: checked against each scenario when the jobs are built
 

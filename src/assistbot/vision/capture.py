@@ -6,6 +6,11 @@ from the same ``data`` (so the extrinsics match the head pose of the images).  A
 dropout probability drops whole frames (``frame.dropped``: no images): vision then reports
 everything as not seen.
 
+With ``threaded=True`` a pair can also be taken in two halves: `start(data)` copies what both
+cameras see now, a render thread draws it while the caller steps the world on, and
+`collect(frame)` waits for the images.  Same pixels as `grab`, made on the core the physics
+leaves idle.
+
 Rendering uses `assistbot.world.render.Renderer` on the world's own model (its glass is
 translucent in the MJCF, so the cameras see the liquid through the wall).
 """
@@ -19,7 +24,7 @@ import mujoco
 import numpy as np
 
 from assistbot.vision.camera import CameraModel
-from assistbot.world.render import Renderer
+from assistbot.world.render import Renderer, RenderThread
 
 CAMERAS = ("head_cam_left", "head_cam_right")
 
@@ -59,10 +64,18 @@ class StereoFrame:
 class StereoCapture:
     """Renders the head cameras; close it (or use ``with``) when done."""
 
-    def __init__(self, model: mujoco.MjModel, config: CaptureConfig | None = None) -> None:
+    def __init__(self, model: mujoco.MjModel, config: CaptureConfig | None = None, threaded: bool = False) -> None:
         self.config = (config or CaptureConfig()).validate()
         self.model = model
-        self.renderer = Renderer(model, self.config.width, self.config.height, shadows=False)
+        c = self.config
+        if threaded:
+            self._thread: RenderThread | None = RenderThread(model, c.width, c.height)
+            self.renderer = self._thread.renderer
+            self._scenes = [self.renderer.new_scene() for _ in CAMERAS]
+        else:
+            self._thread = None
+            self.renderer = Renderer(model, c.width, c.height, shadows=False)
+        self._pending: StereoFrame | None = None
         self._rng = np.random.default_rng(self.config.seed)
         self._next_t = 0.0
 
@@ -78,9 +91,14 @@ class StereoCapture:
         c = self.config
         return tuple(CameraModel.from_data(self.model, data, n, c.width, c.height) for n in CAMERAS)  # type: ignore[return-value]
 
+    def _dropped(self) -> bool:
+        return self.config.dropout > 0 and self._rng.random() < self.config.dropout
+
     def grab(self, data: mujoco.MjData) -> StereoFrame:
+        if self._thread is not None:
+            return self.collect(self.start(data))
         cams = self.cameras(data)
-        if self.config.dropout > 0 and self._rng.random() < self.config.dropout:
+        if self._dropped():
             return StereoFrame(float(data.time), None, None, cams, dropped=True)
         t0 = time.perf_counter()
         left = self.renderer.rgb(data, CAMERAS[0])
@@ -88,12 +106,44 @@ class StereoCapture:
         ms = (time.perf_counter() - t0) * 1000.0
         return StereoFrame(float(data.time), left, right, cams, render_ms=ms)
 
+    def start(self, data: mujoco.MjData, meta: dict | None = None) -> StereoFrame:
+        """Take the pair now; its images are drawn on the render thread (``threaded=True`` only)
+        and filled in by `collect`.  ``data`` may be stepped on meanwhile."""
+        if self._thread is None:
+            raise RuntimeError("StereoCapture.start needs threaded=True")
+        if self._pending is not None:
+            raise RuntimeError("StereoCapture.start: collect the frame started before first")
+        frame = StereoFrame(float(data.time), None, None, self.cameras(data), meta=dict(meta or {}))
+        if self._dropped():
+            frame.dropped = True
+            return frame
+        self._thread.submit([self.renderer.update_scene(data, cam, s) for cam, s in zip(CAMERAS, self._scenes)])
+        self._pending = frame
+        return frame
+
+    def collect(self, frame: StereoFrame) -> StereoFrame:
+        """The frame from `start` with its images (waits for the render thread if it is still drawing);
+        ``frame.render_ms`` is the thread's drawing time."""
+        if frame.dropped or frame.left is not None:
+            return frame
+        if frame is not self._pending:
+            raise RuntimeError("StereoCapture.collect: not the frame started last")
+        (frame.left, frame.right), seconds = self._thread.result()
+        frame.render_ms = 1000.0 * seconds
+        self._pending = None
+        return frame
+
     def segmentation(self, data: mujoco.MjData) -> tuple[np.ndarray, np.ndarray]:
         """Ground-truth pixel labels of both cameras: for calibration and labelling only, never inference."""
+        if self._thread is not None:
+            raise RuntimeError("StereoCapture.segmentation renders on the calling thread: use threaded=False")
         return self.renderer.segmentation(data, CAMERAS[0]), self.renderer.segmentation(data, CAMERAS[1])
 
     def close(self) -> None:
-        self.renderer.close()
+        if self._thread is not None:
+            self._thread.close()
+        else:
+            self.renderer.close()
 
     def __enter__(self) -> "StereoCapture":
         return self

@@ -12,9 +12,14 @@ exit when a context is left to the garbage collector.
 
 from __future__ import annotations
 
+import atexit
 import ctypes
 import ctypes.util
 import os
+import queue
+import threading
+import time
+import weakref
 from pathlib import Path
 
 import mujoco
@@ -106,28 +111,43 @@ class Renderer:
         self._rect = mujoco.MjrRect(0, 0, self.width, self.height)
         self._labels = _geom_labels(model)
 
-    def _update(self, data: mujoco.MjData, camera: str) -> None:
+    def _camera_id(self, camera: str) -> int:
         try:
-            cam_id = self.model.camera(camera).id
+            return self.model.camera(camera).id
         except KeyError:
             raise UserError("rendering", "camera", f"unknown camera {camera!r}") from None
-        self._camera.type = mujoco.mjtCamera.mjCAMERA_FIXED
-        self._camera.fixedcamid = cam_id
-        mujoco.mjv_updateScene(self.model, data, self._option, None, self._camera, mujoco.mjtCatBit.mjCAT_ALL, self._scene)
 
-    def rgb(self, data: mujoco.MjData, camera: str) -> np.ndarray:
-        """(height, width, 3) uint8 image from `camera`."""
+    def new_scene(self) -> mujoco.MjvScene:
+        """A scene with this renderer's settings, for `update_scene` and `draw`."""
+        scene = mujoco.MjvScene(self.model, maxgeom=2000)
+        scene.flags[mujoco.mjtRndFlag.mjRND_SHADOW] = self._scene.flags[mujoco.mjtRndFlag.mjRND_SHADOW]
+        return scene
+
+    def update_scene(self, data: mujoco.MjData, camera: str, scene: mujoco.MjvScene | None = None) -> mujoco.MjvScene:
+        """What `camera` sees in ``data`` now, copied into ``scene`` (default: the renderer's own).
+        No GL: any thread may call it, and ``data`` may change afterwards."""
+        scene = self._scene if scene is None else scene
+        self._camera.type = mujoco.mjtCamera.mjCAMERA_FIXED
+        self._camera.fixedcamid = self._camera_id(camera)
+        mujoco.mjv_updateScene(self.model, data, self._option, None, self._camera, mujoco.mjtCatBit.mjCAT_ALL, scene)
+        return scene
+
+    def draw(self, scene: mujoco.MjvScene) -> np.ndarray:
+        """(height, width, 3) uint8 image of a scene made by `update_scene`, on the thread that made this renderer."""
         self._gl.make_current()
-        self._update(data, camera)
-        mujoco.mjr_render(self._rect, self._scene, self._con)
+        mujoco.mjr_render(self._rect, scene, self._con)
         out = np.empty((self.height, self.width, 3), np.uint8)
         mujoco.mjr_readPixels(out, None, self._rect, self._con)
         return np.flipud(out).copy()
 
+    def rgb(self, data: mujoco.MjData, camera: str) -> np.ndarray:
+        """(height, width, 3) uint8 image from `camera`."""
+        return self.draw(self.update_scene(data, camera))
+
     def depth(self, data: mujoco.MjData, camera: str) -> np.ndarray:
         """(height, width) float32 distance along the view axis in metres."""
         self._gl.make_current()
-        self._update(data, camera)
+        self.update_scene(data, camera)
         mujoco.mjr_render(self._rect, self._scene, self._con)
         z = np.empty((self.height, self.width), np.float32)
         mujoco.mjr_readPixels(None, z, self._rect, self._con)
@@ -139,7 +159,7 @@ class Renderer:
     def segmentation(self, data: mujoco.MjData, camera: str) -> np.ndarray:
         """(height, width) uint8 labels (SEGMENT_LABELS) of what each pixel shows."""
         self._gl.make_current()
-        self._update(data, camera)
+        self.update_scene(data, camera)
         s = self._scene
         s.flags[mujoco.mjtRndFlag.mjRND_SEGMENT] = True
         s.flags[mujoco.mjtRndFlag.mjRND_IDCOLOR] = True
@@ -170,6 +190,79 @@ class Renderer:
 
     def __exit__(self, *exc) -> None:
         self.close()
+
+
+class RenderThread:
+    """A `Renderer` that draws on a thread of its own, so the pictures are made while the caller
+    steps the world: MuJoCo's and Mesa's C code run without the GIL, and a 2-core machine has a
+    core the physics leaves idle.  The GL context is made, used and freed on that thread only.
+
+    ``submit(scenes)`` hands over scenes made by ``renderer.update_scene`` (the caller's copies of
+    the world at that instant); ``result()`` waits for their images.  One batch at a time."""
+
+    _live: weakref.WeakSet = weakref.WeakSet()  # closed at exit: OSMesa crashes when a context outlives its thread
+
+    def __init__(self, model: mujoco.MjModel, width: int, height: int) -> None:
+        self._jobs: queue.SimpleQueue = queue.SimpleQueue()
+        self._done: queue.SimpleQueue = queue.SimpleQueue()
+        self._busy = False
+        self._thread = threading.Thread(target=self._run, args=(model, width, height), name="assistbot-render", daemon=True)
+        self._thread.start()
+        ready = self._done.get()
+        if isinstance(ready, BaseException):
+            self._thread.join()
+            raise ready
+        self.renderer: Renderer = ready
+        RenderThread._live.add(self)
+
+    def _run(self, model: mujoco.MjModel, width: int, height: int) -> None:
+        try:
+            renderer = Renderer(model, width, height, shadows=False)
+        except BaseException as exc:  # noqa: BLE001 - handed to the constructor, which raises it
+            self._done.put(exc)
+            return
+        self._done.put(renderer)
+        try:
+            while (scenes := self._jobs.get()) is not None:
+                try:
+                    t0 = time.perf_counter()
+                    images = [renderer.draw(s) for s in scenes]
+                    self._done.put((images, time.perf_counter() - t0))
+                except BaseException as exc:  # noqa: BLE001 - raised again by result()
+                    self._done.put(exc)
+        finally:
+            renderer.close()
+
+    def submit(self, scenes: list[mujoco.MjvScene]) -> None:
+        if self._busy:
+            raise RuntimeError("RenderThread.submit: collect the previous result first")
+        self._busy = True
+        self._jobs.put(list(scenes))
+
+    def result(self) -> tuple[list[np.ndarray], float]:
+        """The images of the last submitted scenes and the seconds the thread spent drawing them."""
+        if not self._busy:
+            raise RuntimeError("RenderThread.result: nothing submitted")
+        out = self._done.get()
+        self._busy = False
+        if isinstance(out, BaseException):
+            raise out
+        return out
+
+    def close(self) -> None:
+        if self._thread.is_alive():
+            if self._busy:
+                self._done.get()
+                self._busy = False
+            self._jobs.put(None)
+            self._thread.join()
+        RenderThread._live.discard(self)
+
+
+@atexit.register
+def _close_render_threads() -> None:
+    for rt in list(RenderThread._live):
+        rt.close()
 
 
 def _geom_labels(model: mujoco.MjModel) -> np.ndarray:
