@@ -333,6 +333,37 @@ def test_unreachable_target_fails_with_reason_in_bounded_time():
     assert_safe(s)
 
 
+class _MoveTo(P.Primitive):
+    """One Move to a goal the test sets each tick."""
+
+    name = "move_to"
+
+    def __init__(self, robot, goal):
+        super().__init__(robot, None)
+        self._goal = goal
+
+    def phases(self):
+        return [P.Move("approach", lambda p: p._goal(), duration=1.5)]
+
+
+@pytest.mark.parametrize("bad_seconds, ends", [(0.1, Status.SUCCEEDED), (0.6, Status.FAILED)])
+def test_a_target_out_of_reach_for_a_moment_does_not_end_the_move(bad_seconds, ends):
+    from assistbot.robot import poses
+
+    w, robot = make("HWS:closed", "RWS:empty")
+    home = robot.commanded_tcp_pose()
+    near = poses.pose(home.rotation(), home.translation() + np.array([-0.05, 0.05, -0.05]))
+    far = poses.pose(home.rotation(), np.array([-0.40, -0.30, 0.80]))  # a misread: deep in the person's side
+    t0 = w.time
+    pr, s = run(w, _MoveTo(robot, lambda: far if 0.5 <= w.time - t0 < 0.5 + bad_seconds else near), seconds=6.0)
+    assert pr.status is ends, pr.reason
+    if ends is Status.FAILED:
+        assert "out of reach" in pr.reason
+    else:
+        assert np.linalg.norm(robot.tcp_pose().translation() - near.translation()) < 0.02
+    assert_safe(s)
+
+
 def test_ik_without_solution_is_reported_as_a_failure(monkeypatch):
     w, robot = make("HWS:closed", "RWS:empty")
 

@@ -47,6 +47,7 @@ from assistbot.robot.controller import REACH, TCP_MIN_X, RobotController
 from assistbot.robot.target_field import TargetField
 
 TABLE_Z = 0.75
+UNREACHABLE_PATIENCE = 0.3  # s in all that a Move's target may be out of reach before the move fails (3 perception ticks)
 
 
 class Status(enum.Enum):
@@ -86,16 +87,28 @@ class Move(Phase):
     def start(self, prim: "Primitive") -> None:
         self.origin = prim.robot.commanded_tcp_pose()
         self.failures = 0
+        self.unreachable = 0.0  # s this move's target has been out of reach
+
+    def _unreachable(self, prim, goal: mink.SE3) -> str:
+        dist = prim.robot.reach_distance(goal.translation())
+        if dist > REACH:
+            return f"{self.name}: target {np.round(goal.translation(), 2).tolist()} out of reach ({dist:.2f} m from the shoulder > {REACH:.2f} m)"
+        if goal.translation()[0] < TCP_MIN_X - 0.01:
+            return (f"{self.name}: target x {goal.translation()[0]:.2f} m is beyond the hand-over zone "
+                    f"(the hand may reach x >= {TCP_MIN_X:.2f} m)")
+        return ""
 
     def tick(self, prim, dt, t):
         goal = self.goal(prim)
-        if self.check_reach:
-            dist = prim.robot.reach_distance(goal.translation())
-            if dist > REACH:
-                return Status.FAILED, f"{self.name}: target {np.round(goal.translation(), 2).tolist()} out of reach ({dist:.2f} m from the shoulder > {REACH:.2f} m)"
-            if goal.translation()[0] < TCP_MIN_X - 0.01:
-                return Status.FAILED, (f"{self.name}: target x {goal.translation()[0]:.2f} m is beyond the hand-over zone "
-                                       f"(the hand may reach x >= {TCP_MIN_X:.2f} m)")
+        why = self._unreachable(prim, goal) if self.check_reach else ""
+        if why:
+            # one misread frame must not end the action: the arm waits where it is, and the move
+            # fails once its target has been out of reach for UNREACHABLE_PATIENCE in all
+            self.unreachable += dt
+            if self.unreachable >= UNREACHABLE_PATIENCE - 1e-9:
+                return Status.FAILED, why
+            prim.robot.hold()
+            return Status.RUNNING, ""
         via = poses.interpolate(self.origin, goal, poses.min_jerk(t / self.duration))
         res = prim.robot.move_toward(via, dt)
         if not res.ok:
