@@ -71,6 +71,11 @@ class RobotExecutor:
         o = p.objects.get(obj)
         if o is None or not o.seen:
             return None
+        h = p.hand
+        if h.seen and h.object_in_hand == obj and not h.held_out:
+            # the person holds it for themselves (to drink, to pour): not a target to follow toward
+            # them; the target field keeps where it was
+            return None
         return (o.position[0], o.position[1])
 
     def _locate(self, obj: str | None):
