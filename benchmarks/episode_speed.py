@@ -1,11 +1,14 @@
 """Where an episode's wall time goes, against physics alone and against real time.
 
 Run: .venv/bin/python benchmarks/episode_speed.py [--scenario paper-fig3-4] [--seconds S] [--video-seconds 10]
+     [--set vision.pipelined=false]
 
 1. The scenario without video to the drink (or for ``--seconds`` of simulated
-   time): wall time split into physics, rendering (the head cameras),
-   perception (vision's processing, or the oracle), cognition, robot (IK +
-   primitives), human control.
+   time): wall time split into physics, rendering (the head cameras: with
+   pipelined vision, the default, the time the loop waited for the render
+   thread, whose own drawing time is printed below the table), perception
+   (vision's processing, or the oracle), cognition, robot (IK + primitives),
+   human control.
 2. Physics alone: the same arrangement stepped for the same simulated time
    with nothing else running.
 3. The same scenario with video for ``--video-seconds``: cost of a video
