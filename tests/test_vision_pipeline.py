@@ -117,3 +117,19 @@ def test_segmentation_labels_split_skin_and_shirt(world):
     with Renderer(world.model, 160, 120) as r:
         seg = r.segmentation(world.data, "head_cam_left")
     assert {inv["skin"], inv["shirt"]} <= set(np.unique(seg).tolist())
+
+
+def test_colour_table_labels_every_colour_as_its_hsv_boxes_say():
+    """The 24-bit gather gives each pixel the label of its 6-bit colour bucket (the compiled table),
+    at full and at half resolution (every other pixel, as cv2.resize's nearest neighbour picks)."""
+    from assistbot.vision.library import load_calibration
+    from assistbot.vision.segment import ColourTable
+
+    table = ColourTable(load_calibration()["hsv"])
+    rng = np.random.default_rng(0)
+    img = rng.integers(0, 256, (40, 50, 3), dtype=np.uint8)
+    q = (img >> 2).astype(np.int64)
+    want = table.lut[(q[..., 0] << 12) | (q[..., 1] << 6) | q[..., 2]]
+    assert np.array_equal(table.labels(img), want)
+    assert np.array_equal(table.labels(img, 2), want[::2, ::2])
+    assert np.array_equal(table.labels(img[5:17, 3:30]), want[5:17, 3:30])   # a non-contiguous region of interest

@@ -5,8 +5,9 @@ through the glass), skin (hands, arms, face) and shirt (torso, sleeves).  The ca
 ranges (`assistbot calibrate`) are a list of boxes (h_lo, h_hi, s_lo, s_hi, v_lo, v_hi) per part in
 OpenCV units (H 0..179, S and V 0..255; a red hue that wraps around 0 is two boxes).
 
-Speed: the boxes are compiled once into a 64x64x64 RGB -> label table (`ColourTable`); labelling
-an image is then one gather per pixel (no per-frame HSV conversion or per-part inRange).  Blobs
+Speed: the boxes are compiled once into a 64x64x64 RGB -> label table (`ColourTable`), spread
+over all 2^24 colours; labelling an image is then one gather per pixel by its packed colour (no
+per-frame HSV conversion or per-part inRange).  Blobs
 are found on the half-resolution label image (`labels(img, step=2)`), with one
 connected-components pass per part group; fine measurements (stopper, liquid, edges) label
 only small full-resolution regions of interest.
@@ -56,12 +57,22 @@ class ColourTable:
                 lut[sel] = LABEL[part]
         self.lut = lut
 
+        # the same table spread over all 2^24 colours (16 MB): an image's label is then one gather
+        # by the pixel's packed 24-bit colour, which cv2.cvtColor to BGRA makes in one fast pass
+        # (no per-frame shifting and combining of channels: ~4x faster, the same labels)
+        t3 = lut.reshape(n, n, n)
+        k = 1 << (8 - _BITS)
+        self.lut24 = np.repeat(np.repeat(np.repeat(t3, k, axis=0), k, axis=1), k, axis=2).ravel()
+
     def labels(self, img: np.ndarray, step: int = 1) -> np.ndarray:
         """(H/step, W/step) uint8 labels of an RGB image (every `step`-th pixel)."""
         sub = cv2.resize(img, None, fx=1 / step, fy=1 / step, interpolation=cv2.INTER_NEAREST) if step > 1 else img
-        q = (sub >> (8 - _BITS)).astype(np.int32)
-        idx = (q[..., 0] << (2 * _BITS)) | (q[..., 1] << _BITS) | q[..., 2]
-        return self.lut[idx]
+        h, w = sub.shape[:2]
+        if h == 0 or w == 0:
+            return np.zeros((h, w), np.uint8)
+        # BGRA bytes read as a little-endian uint32: A << 24 | R << 16 | G << 8 | B
+        code = cv2.cvtColor(np.ascontiguousarray(sub), cv2.COLOR_RGB2BGRA).view(np.uint32).reshape(h, w)
+        return np.take(self.lut24, code & 0xFFFFFF)
 
 
 def components(mask: np.ndarray, part: str, keep: int = 4, scale: int = 2) -> tuple[list[Blob], np.ndarray]:
