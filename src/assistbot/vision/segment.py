@@ -7,10 +7,9 @@ OpenCV units (H 0..179, S and V 0..255; a red hue that wraps around 0 is two box
 
 Speed: the boxes are compiled once into a 64x64x64 RGB -> label table (`ColourTable`), spread
 over all 2^24 colours; labelling an image is then one gather per pixel by its packed colour (no
-per-frame HSV conversion or per-part inRange).  Blobs
-are found on the half-resolution label image (`labels(img, step=2)`), with one
-connected-components pass per part group; fine measurements (stopper, liquid, edges) label
-only small full-resolution regions of interest.
+per-frame HSV conversion or per-part inRange).  Blobs are found on the half-resolution label
+image (`labels(img, step=2)`), with one connected-components pass per part group; fine
+measurements (stopper, liquid, edges) label only small full-resolution regions of interest.
 """
 
 from __future__ import annotations
