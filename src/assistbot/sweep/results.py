@@ -186,8 +186,15 @@ def write_parquet(csv_path: Path, parquet_path: Path) -> None:
     raw = csv_path.read_bytes()
     if not raw.endswith(b"\n"):
         raw = raw[: raw.rfind(b"\n") + 1]
-    table = pacsv.read_csv(pa.py_buffer(raw), convert_options=pacsv.ConvertOptions(
-        column_types=types, true_values=["true"], false_values=["false"], strings_can_be_null=False))
+    # arrow reads the whole rows from a file of its own: given a Python buffer, one of its I/O threads
+    # may drop the last reference to it during interpreter exit, and the process aborts
+    rows = parquet_path.with_name(parquet_path.name + ".rows.tmp")
+    rows.write_bytes(raw)
+    try:
+        table = pacsv.read_csv(str(rows), convert_options=pacsv.ConvertOptions(
+            column_types=types, true_values=["true"], false_values=["false"], strings_can_be_null=False))
+    finally:
+        rows.unlink(missing_ok=True)
     tmp = parquet_path.with_name(parquet_path.name + ".tmp")
     pq.write_table(table, tmp)
     os.replace(tmp, parquet_path)
