@@ -21,6 +21,7 @@ from __future__ import annotations
 
 import argparse
 import os
+import sys
 import tempfile
 import time
 from pathlib import Path
@@ -41,8 +42,8 @@ def main() -> None:
 
     from assistbot.episode import run_scenario
     from assistbot.episode.runner import Episode
-    from assistbot.scenario import load_scenario
     from assistbot.commands.run import parse_sets
+    from assistbot.scenario import load_scenario
     from assistbot.world import build_world
 
     sc = load_scenario(args.scenario)
@@ -95,4 +96,10 @@ def main() -> None:
 
 
 if __name__ == "__main__":
-    main()
+    from assistbot.errors import UserError
+
+    try:
+        main()
+    except UserError as exc:  # a bad --set or scenario: one line, exit 2, as the CLI does
+        print(exc.line(), file=sys.stderr)
+        sys.exit(2)
