@@ -80,3 +80,10 @@ def test_pipelined_is_a_boolean_override():
     assert split_overrides({"vision.pipelined": False}, "s.yaml")[2] == {"pipelined": False}
     with pytest.raises(UserError, match="vision.pipelined.*true or false"):
         split_overrides({"vision.pipelined": "no"}, "s.yaml")
+
+
+@pytest.mark.parametrize("bad", [1.0, -0.1, True, "half"])
+def test_dropout_is_a_probability_override(bad):
+    assert split_overrides({"vision.dropout": 0.25}, "s.yaml")[2] == {"dropout": 0.25}
+    with pytest.raises(UserError, match=r"vision.dropout.*a probability in \[0, 1\)"):
+        split_overrides({"vision.dropout": bad}, "s.yaml")

@@ -42,6 +42,20 @@ class Scenario:
     raw: dict[str, Any] = field(default_factory=dict)
 
 
+#: the vision overrides a scenario, `assistbot run --set` or a sweep may give: dotted path -> VisionPerception keyword
+VISION_PARAMS = {"vision.dropout": "dropout", "vision.pipelined": "pipelined"}
+
+
+def check_vision_value(path: str, value: Any, where: str) -> Any:
+    """A vision override's value, checked (dropout: a probability in [0, 1); pipelined: true or false)."""
+    if path == "vision.dropout":
+        if isinstance(value, bool) or not isinstance(value, (int, float)) or not 0 <= value < 1:
+            raise UserError(where, path, f"a probability in [0, 1), got {value!r}")
+    elif not isinstance(value, bool):
+        raise UserError(where, path, f"true or false, got {value!r}")
+    return value
+
+
 def _where(path: Path | str | None) -> str:
     return str(path) if path is not None else "scenario"
 

@@ -25,7 +25,7 @@ from assistbot.errors import UserError
 from assistbot.episode.executor import RobotExecutor
 from assistbot.human.controller import HumanController
 from assistbot.human.script import HumanConfig, PARAMS as HUMAN_PARAMS
-from assistbot.scenario import Scenario
+from assistbot.scenario import VISION_PARAMS, Scenario, check_vision_value
 from assistbot.speech import SpeechLog
 from assistbot.world import build_world
 
@@ -79,7 +79,7 @@ def split_overrides(overrides: dict[str, Any], where: str) -> tuple[dict, dict, 
     from assistbot.cognition.config import CognitionConfig
 
     cog_paths = ["cognition." + p for p in CognitionConfig().paths()]
-    valid = cog_paths + [f"human.{p}" for p in HUMAN_PARAMS] + ["vision.dropout", "vision.pipelined"]
+    valid = cog_paths + [f"human.{p}" for p in HUMAN_PARAMS] + list(VISION_PARAMS)
     for path, value in overrides.items():
         if path in cog_paths:
             try:
@@ -89,14 +89,8 @@ def split_overrides(overrides: dict[str, Any], where: str) -> tuple[dict, dict, 
             cog[path[len("cognition."):]] = value
         elif path.startswith("human.") and path[6:] in HUMAN_PARAMS:
             hum[path[6:]] = value
-        elif path == "vision.dropout":
-            if not isinstance(value, (int, float)) or not 0 <= value < 1:
-                raise UserError(where, path, f"a probability in [0, 1), got {value!r}")
-            vis["dropout"] = float(value)
-        elif path == "vision.pipelined":
-            if not isinstance(value, bool):
-                raise UserError(where, path, f"true or false, got {value!r}")
-            vis["pipelined"] = value
+        elif path in VISION_PARAMS:
+            vis[VISION_PARAMS[path]] = check_vision_value(path, value, where)
         else:
             close = difflib.get_close_matches(path, valid, n=3)
             raise UserError(where, path, "unknown parameter path" + (f"; did you mean {', '.join(close)}?" if close else ""))

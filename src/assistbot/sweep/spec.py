@@ -39,6 +39,7 @@ from typing import Any
 import yaml
 
 from assistbot.errors import UserError
+from assistbot.scenario import VISION_PARAMS, check_vision_value
 
 OBJECT_PATHS = tuple(f"objects.{o}.{k}" for o in ("bottle", "glass")
                      for k in ("position", "position.x", "position.y", "zone", "state"))
@@ -54,7 +55,7 @@ def valid_paths() -> list[str]:
     from assistbot.human.script import PARAMS as HUMAN_PARAMS
 
     return (["cognition." + p for p in CognitionConfig().paths()] + [f"human.{p}" for p in HUMAN_PARAMS]
-            + ["vision.dropout", "vision.pipelined"] + list(OBJECT_PATHS))
+            + list(VISION_PARAMS) + list(OBJECT_PATHS))
 
 
 def check_path(path: str, where: str) -> None:
@@ -221,14 +222,8 @@ def check_value(path: str, value: Any, where: str) -> Any:
         except UserError as exc:
             raise UserError(where, path, exc.message) from None
         return cfg.overrides[path[len("human."):]]
-    if path == "vision.dropout":
-        if isinstance(value, bool) or not isinstance(value, (int, float)) or not 0 <= value < 1:
-            raise UserError(where, path, f"a probability in [0, 1), got {value!r}")
-        return value
-    if path == "vision.pipelined":
-        if not isinstance(value, bool):
-            raise UserError(where, path, f"true or false, got {value!r}")
-        return value
+    if path in VISION_PARAMS:
+        return check_vision_value(path, value, where)
     return value  # objects.*: checked against each scenario when the jobs are built
 
 
