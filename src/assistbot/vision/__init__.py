@@ -3,7 +3,7 @@
 Parts (one idea per file):
   camera.py       pinhole models of the head cameras (K from fovy, pose from the head joints), triangulation
   capture.py      `StereoCapture`: both head cameras offscreen at a rate of simulated time, seeded dropout
-  segment.py      calibrated HSV ranges compiled to an RGB look-up table; one connected-components pass per frame
+  segment.py      calibrated HSV ranges compiled to an RGB look-up table; connected components per part mask
   calibration.py  `calibrate`: HSV ranges and static skin spots from labelled calibration renders
   detect.py       `Detector`: blobs -> stereo-matched objects and hand (arm root at the sleeve), 3-D positions,
                   visibility from the silhouette's extent, crops, features

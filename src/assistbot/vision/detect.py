@@ -31,7 +31,7 @@ import numpy as np
 cv2.setNumThreads(1)   # per-frame work on small images: OpenCV's thread pool costs more than it saves
 
 from assistbot.vision.camera import CameraModel, on_plane, triangulate
-from assistbot.vision.segment import LABEL, Blob, ColourTable, components_tiled
+from assistbot.vision.segment import LABEL, Blob, ColourTable, components_each
 from assistbot.world import layout
 
 MIN_EXTENT = 0.82
@@ -221,10 +221,10 @@ class Detector:
         imgs = (left, right)
         lab = tuple(self.table.labels(im, 2) for im in imgs)
         det = Detections(labels=lab)
-        # one connected-components pass for both cameras and all parts (masks tiled side by side)
-        tiles, views = components_tiled([[L == _B, (L == _G) | (L == _L), L == _K] for L in lab],
-                                        ("bottle", "glass", "skin"), (2, 2, 6), pairs_only=True)
-        blobs = [{"bottle": t[0], "glass": t[1], "skin": (t[2], v[2])} for t, v in zip(tiles, views)]
+        # the blobs of each part in each camera (a right-image part only where the left has one to pair with)
+        found, views = components_each([[L == _B, (L == _G) | (L == _L), L == _K] for L in lab],
+                                       ("bottle", "glass", "skin"), (2, 2, 6), pairs_only=True)
+        blobs = [{"bottle": f[0], "glass": f[1], "skin": (f[2], v[2])} for f, v in zip(found, views)]
         for name in ("bottle", "glass"):
             det.objects[name] = self._object(name, blobs, imgs, cams)
         det.hand = self._hand(blobs, lab, imgs, cams, det)

@@ -91,7 +91,7 @@ def components(mask: np.ndarray, part: str, keep: int = 4, scale: int = 2) -> tu
     return res, lab
 
 
-def components_tiled(masks: list[list[np.ndarray]], parts: tuple[str, ...], keep: tuple[int, ...], scale: int = 2,
+def components_each(masks: list[list[np.ndarray]], parts: tuple[str, ...], keep: tuple[int, ...], scale: int = 2,
                      pairs_only: bool = False):
     """Connected components of several (half-resolution) masks: masks[camera][k].  Returns, per camera
     and part, the `keep[k]` largest blobs (full-resolution pixels; ``Blob.label`` indexes the views) and
