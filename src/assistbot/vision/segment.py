@@ -69,9 +69,11 @@ class ColourTable:
         h, w = sub.shape[:2]
         if h == 0 or w == 0:
             return np.zeros((h, w), np.uint8)
-        # BGRA bytes read as a little-endian uint32: A << 24 | R << 16 | G << 8 | B
-        code = cv2.cvtColor(np.ascontiguousarray(sub), cv2.COLOR_RGB2BGRA).view(np.uint32).reshape(h, w)
-        return np.take(self.lut24, code & 0xFFFFFF)
+        # BGRA bytes read as a little-endian int32: A << 24 | R << 16 | G << 8 | B with A = 255, i.e.
+        # (R << 16 | G << 8 | B) - 2^24: a negative index that counts from the end of the 2^24-entry
+        # table, so it gathers the colour's label directly (no masking pass over the image)
+        code = cv2.cvtColor(np.ascontiguousarray(sub), cv2.COLOR_RGB2BGRA).view(np.int32).reshape(h, w)
+        return np.take(self.lut24, code)
 
 
 def components(mask: np.ndarray, part: str, keep: int = 4, scale: int = 2) -> tuple[list[Blob], np.ndarray]:
