@@ -101,28 +101,45 @@ def components_each(masks: list[list[np.ndarray]], parts: tuple[str, ...], keep:
 
     One connected-components call per mask (Grana's algorithm, ~3x faster than the default on these
     sparse masks): measured faster than one call on the masks tiled into one image (~0.3 vs ~0.9 ms
-    for 2 x 3 masks of 160x120).  An empty mask, and with ``pairs_only`` a later camera's mask of a
-    part the first camera has no blob of (nothing to pair it with), get no blobs and a zero view
-    without the call."""
+    for 2 x 3 masks of 160x120).  Each call sees only the mask's bounding box, widened to even
+    rows and columns (~0.035 vs ~0.064 ms a call): Grana's algorithm scans 2x2 blocks, so on that
+    aligned box it meets the same foreground blocks in the same order and numbers the components as
+    on the whole mask; the statistics are moved back to the whole mask's pixels (the centroids from
+    their exact integer sums, as OpenCV divides them).  An empty mask, and with ``pairs_only`` a
+    later camera's mask of a part the first camera has no blob of (nothing to pair it with), get no
+    blobs and a zero view without the call."""
     out: list[list[list[Blob]]] = []
     views = []
     for c, cm in enumerate(masks):
         oc, vc = [], []
         for k, m in enumerate(cm):
-            if (pairs_only and c > 0 and not out[0][k]) or not m.any():
+            m8 = m.view(np.uint8)
+            if pairs_only and c > 0 and not out[0][k]:
+                bw = 0
+            else:
+                bx, by, bw, bh = cv2.boundingRect(m8)
+            if bw == 0:
                 oc.append([])
                 vc.append(np.zeros(m.shape, np.int32))
                 continue
-            n, lab, stats, cents = cv2.connectedComponentsWithStatsWithAlgorithm(m.view(np.uint8), 8, cv2.CV_32S, cv2.CCL_GRANA)
+            x0, y0 = bx & ~1, by & ~1
+            x1, y1 = bx + bw, by + bh
+            n, sub, stats, cents = cv2.connectedComponentsWithStatsWithAlgorithm(m8[y0:y1, x0:x1], 8, cv2.CV_32S, cv2.CCL_GRANA)
+            lab = np.zeros(m.shape, np.int32)
+            lab[y0:y1, x0:x1] = sub
             vc.append(lab)
             res: list[Blob] = []
             if n > 1:
                 areas = stats[1:, cv2.CC_STAT_AREA]
                 ok = np.flatnonzero(areas >= MIN_AREA[parts[k]])
                 for i in ok[np.argsort(-areas[ok], kind="stable")][:keep[k]]:
-                    x, y, w, h = (int(v) * scale for v in stats[i + 1, :4])
-                    res.append(Blob(parts[k], float(areas[i]) * scale * scale, (cents[i + 1] + 0.5) * scale - 0.5,
-                                    (x, y, w, h), int(i + 1)))
+                    x, y, w, h = (int(v) for v in stats[i + 1, :4])
+                    a = float(areas[i])
+                    # the pixel sums of this crop (exact integers), moved by the crop's offset
+                    cx = (round(float(cents[i + 1, 0]) * a) + x0 * a) / a
+                    cy = (round(float(cents[i + 1, 1]) * a) + y0 * a) / a
+                    res.append(Blob(parts[k], a * scale * scale, (np.array([cx, cy]) + 0.5) * scale - 0.5,
+                                    ((x + x0) * scale, (y + y0) * scale, w * scale, h * scale), int(i + 1)))
             oc.append(res)
         out.append(oc)
         views.append(vc)
