@@ -69,20 +69,34 @@ class CameraModel:
         out = uv[:, :2] / np.where(z > 1e-6, z, np.nan)
         return out
 
+    @cached_property
+    def _Q_parts(self) -> tuple[np.ndarray, np.ndarray]:
+        """(the pixel rows of `_Q`, its constant row): views taken once."""
+        Q = self._Q
+        return Q[:2], Q[2]
+
+    @cached_property
+    def _P_parts(self) -> tuple[np.ndarray, np.ndarray]:
+        """(P[:, :3].T, P[:, 3]): views of `P` taken once (the same arrays `expected_box` used to slice)."""
+        P = self.P
+        return P[:, :3].T, P[:, 3]
+
     def ray(self, uv) -> np.ndarray:
         """Unit direction (table frame) of the ray through pixel(s) (N, 2)."""
-        Q = self._Q
-        d = np.reshape(np.asarray(uv, float), (-1, 2)) @ Q[:2] + Q[2]
+        Q2, q = self._Q_parts
+        d = np.reshape(np.asarray(uv, float), (-1, 2)) @ Q2 + q
         return d / np.sqrt((d * d).sum(axis=1, keepdims=True))
 
     def expected_box(self, X: np.ndarray) -> tuple[float, float]:
         """(width, height) in pixels of the image of the table points X (N, 3); (1, 1) if any is behind the camera."""
-        h = X @ self.P[:, :3].T + self.P[:, 3]
+        A, t = self._P_parts
+        h = X @ A + t
         z = h[:, 2]
         if z.min() <= 1e-6:
             return 1.0, 1.0
-        u, v = h[:, 0] / z, h[:, 1] / z
-        return float(u.max() - u.min()), float(v.max() - v.min())
+        uv = h[:, :2] / z[:, None]          # u, v = h[:, 0] / z, h[:, 1] / z
+        hi, lo = uv.max(axis=0), uv.min(axis=0)
+        return float(hi[0] - lo[0]), float(hi[1] - lo[1])
 
 
 def triangulate(left: CameraModel, right: CameraModel, uv_left, uv_right) -> np.ndarray:

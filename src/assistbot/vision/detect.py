@@ -23,6 +23,7 @@ coordinates (m): an object's position is the centre of the base it stands on.
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, field
 
 import cv2
@@ -54,6 +55,8 @@ _DILATE = np.ones((5, 5), np.uint8)
 _DILATE3 = np.ones((3, 3), np.uint8)
 #: label -> "is one of these parts", per part set used for a silhouette
 _PART_SET = {ps: np.isin(np.arange(256), ps) for ps in ((_B,), (_G, _L))}
+#: the same as 0/1 look-up tables for cv2.LUT (a faster gather than indexing with the label image)
+_PART_LUT = {ps: t.astype(np.uint8) for ps, t in _PART_SET.items()}
 _ANG = np.linspace(0, 2 * np.pi, 8, endpoint=False)
 #: an upright object's outline points (base and top rings) relative to its base centre
 _OUTLINE = {n: np.vstack([np.column_stack([layout.OBJECT_RADIUS[n] * np.cos(_ANG), layout.OBJECT_RADIUS[n] * np.sin(_ANG), np.full(8, z)])
@@ -139,7 +142,7 @@ class _Roi:
         x1, y1 = min(W, x + w + 4), min(H, y + h + 4)
         self.img = img[self.y0:y1, self.x0:x1]
         self.lab = table.labels(self.img)
-        m = _PART_SET[parts][self.lab]          # one gather: the label is one of the parts
+        m = cv2.LUT(self.lab, _PART_LUT[parts]).view(bool).reshape(self.lab.shape)   # one gather: the label is one of the parts
         self.mask = m
         m8 = m.view(np.uint8)
         bx, by, bw, bh = cv2.boundingRect(m8)   # the silhouette's extent
@@ -160,7 +163,7 @@ class _Roi:
         self.tilt = 0.0
         if n > 3:   # the silhouette's main axis from its central moments
             a, b, c = mo["mu20"] / n, mo["mu11"] / n, mo["mu02"] / n
-            root = np.sqrt(max(0.0, 0.25 * (a - c) ** 2 + b * b))
+            root = math.sqrt(max(0.0, 0.25 * (a - c) ** 2 + b * b))
             l1, l0 = 0.5 * (a + c) + root, 0.5 * (a + c) - root
             if l1 > 1.5 * l0:   # elongated: the angle of the main axis (b, l1 - a) from the image vertical
                 vx, vy = (b, l1 - a) if abs(b) > 1e-12 else ((1.0, 0.0) if a >= c else (0.0, 1.0))
@@ -188,8 +191,8 @@ class _Roi:
         v, u = self.axis()
         if v.size < AXIS_ROWS:
             return self.tilt
-        dv = v - v.mean()
-        slope = float(dv @ (u - u.mean())) / float(dv @ dv)   # the least-squares line's slope
+        dv = v - v.sum() / v.size              # v.mean(), u.mean(): the same sums and division
+        slope = float(dv @ (u - u.sum() / u.size)) / float(dv @ dv)   # the least-squares line's slope
         return float(np.arctan(abs(slope)))
 
     def axis(self) -> tuple[np.ndarray, np.ndarray]:
@@ -268,9 +271,9 @@ class Detector:
             for cam, roi in zip(cams, rois):
                 P = on_plane(cam, roi.bottom, 0.0)[0]
                 hdir = P[:2] - cam.C[:2]
-                P[:2] += r_obj * hdir / np.linalg.norm(hdir)
+                P[:2] += r_obj * hdir / math.sqrt(hdir.dot(hdir))     # np.linalg.norm(hdir)
                 pts.append(P)
-            pos = np.mean(pts, axis=0)
+            pos = (pts[0] + pts[1]) / 2      # np.mean(pts, axis=0)
         else:   # lifted: x, y from the axis in both images; the height from the silhouette's centroid
             pos = triangulate(cams[0], cams[1], rois[0].centroid, rois[1].centroid)[0]
             pos[2] -= CENTROID_Z[name]
@@ -291,8 +294,9 @@ class Detector:
         extent = 9.0
         H, W = imgs[0].shape[:2]
         inside = True
+        outline = pos + _OUTLINE[name]
         for cam, roi, bb in zip(cams, rois, (a, b)):
-            ew, eh = cam.expected_box(pos + _OUTLINE[name])
+            ew, eh = cam.expected_box(outline)
             extent = min(extent, roi.h_capped / max(eh, 1.0), roi.w / max(ew, 1.0))
             x, y, w, h = bb.bbox
             inside &= x > 1 and y > 1 and x + w < W - 1 and y + h < H - 1
@@ -305,7 +309,8 @@ class Detector:
         return det
 
     def _object_features(self, det: ObjectDetection, rois, cams, pos) -> None:
-        depth = float(np.linalg.norm(pos - cams[0].C))
+        dp = pos - cams[0].C
+        depth = math.sqrt(dp.dot(dp))          # np.linalg.norm(pos - C)
         f = cams[0].K[0, 0]
         if det.name == "bottle":
             # the stopper: red pixels touching the bottle's silhouette (any tilt); the band above the
@@ -372,14 +377,15 @@ class Detector:
             sleeve = cv2.dilate((sub == _T).view(np.uint8), _DILATE3) > 0
             touch = np.nonzero(skin & sleeve)
             if len(touch[0]) >= 2:
-                root = np.array([touch[1].mean() + x0, touch[0].mean() + y0]) * 2 + 0.5
+                nt = touch[0].size                # the means as np.mean takes them: sum / count
+                root = np.array([touch[1].sum() / nt + x0, touch[0].sum() / nt + y0]) * 2 + 0.5
             else:
                 tm = cv2.moments((L == _T).view(np.uint8), binaryImage=True)
                 root = np.array([tm["m10"] / tm["m00"], tm["m01"] / tm["m00"]]) * 2 if tm["m00"] > 0 else bb.centroid + [0, -40]
             dp = P - root
             dist2 = np.einsum("ij,ij->i", dp, dp)       # squared: the same 75th-percentile selection as distances
             far = P[dist2 >= _pct(dist2, 75)]
-            end = far.mean(axis=0)
+            end = far.sum(axis=0) / len(far)           # far.mean(axis=0)
             ends.append(end)
             roots.append(root)
             if not spread:   # the hand's own outline (left camera): spread along and across the arm, in px
@@ -387,10 +393,13 @@ class Detector:
                 ax = ax / max(1e-6, float(np.hypot(ax[0], ax[1])))
                 q = far - end
                 pr = q @ np.array([[ax[0], -ax[1]], [ax[1], ax[0]]])
-                sd = pr.std(axis=0)
+                # pr.std(axis=0), step by step as np.std takes it
+                dev = pr - pr.sum(axis=0, keepdims=True) / len(pr)
+                sd = np.sqrt((dev * dev).sum(axis=0) / len(pr))
                 spread = [float(sd[0]), float(sd[1]), float(len(far))]
         Xd, Xr = triangulate(cams[0], cams[1], np.array([ends[0], roots[0]]), np.array([ends[1], roots[1]]))
-        depth = float(np.linalg.norm(Xd - cams[0].C))
+        dd = Xd - cams[0].C
+        depth = math.sqrt(dd.dot(dd))             # np.linalg.norm(Xd - C)
         half = int(round(cams[0].K[0, 0] * HAND_REACH / depth))
         u, v = (int(round(c)) for c in ends[0])
         skin_full = self.table.labels(imgs[0][max(0, v - half):v + half, max(0, u - half):u + half]) == _K
@@ -408,13 +417,14 @@ class Detector:
         (bottle, glass) the horizontal distance, the height over its (upright) top, its base height
         and tilt, and the bottle's stopper in view."""
         d = Xd - Xr
-        d = d / max(1e-6, float(np.linalg.norm(d)))
+        d = d / max(1e-6, math.sqrt(d.dot(d)))     # np.linalg.norm(d)
         rel = []
         for o in (det.objects["bottle"], det.objects["glass"]):
             if o.position is None:
                 rel += [0.5, 0.0, 0.0, 0.0]
                 continue
-            rel += [float(np.linalg.norm(Xd[:2] - o.position[:2])), float(Xd[2] - o.position[2] - HEIGHT[o.name]),
+            dxy = Xd[:2] - o.position[:2]
+            rel += [math.sqrt(dxy.dot(dxy)), float(Xd[2] - o.position[2] - HEIGHT[o.name]),
                     float(o.position[2]), float(o.tilt)]
         red = float(max(det.objects["bottle"].stopper))
         return np.array([*Xd, *d, *Xr, area, *shape, *rel, red], np.float32)

@@ -72,7 +72,7 @@ class ColourTable:
         # BGRA bytes read as a little-endian int32: A << 24 | R << 16 | G << 8 | B with A = 255, i.e.
         # (R << 16 | G << 8 | B) - 2^24: a negative index that counts from the end of the 2^24-entry
         # table, so it gathers the colour's label directly (no masking pass over the image)
-        code = cv2.cvtColor(np.ascontiguousarray(sub), cv2.COLOR_RGB2BGRA).view(np.int32).reshape(h, w)
+        code = cv2.cvtColor(sub, cv2.COLOR_RGB2BGRA).view(np.int32).reshape(h, w)   # a view of rows is read in place
         return np.take(self.lut24, code)
 
 
