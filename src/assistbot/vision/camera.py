@@ -11,6 +11,7 @@ forward kinematics from the model's head bodies and the pan/tilt joint angles in
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 from functools import cached_property
 
@@ -85,7 +86,19 @@ class CameraModel:
         """Unit direction (table frame) of the ray through pixel(s) (N, 2)."""
         Q2, q = self._Q_parts
         d = np.reshape(np.asarray(uv, float), (-1, 2)) @ Q2 + q
+        if len(d) <= _FEW:
+            return np.array(_unit_rows(d))
         return d / np.sqrt((d * d).sum(axis=1, keepdims=True))
+
+    def _ray_rows(self, uv) -> tuple[list, np.ndarray]:
+        """`ray` of a few pixels, as rows of floats and as the array."""
+        Q2, q = self._Q_parts
+        d = np.reshape(np.asarray(uv, float), (-1, 2)) @ Q2 + q
+        if len(d) <= _FEW:
+            rows = _unit_rows(d)
+            return rows, np.array(rows)
+        d = d / np.sqrt((d * d).sum(axis=1, keepdims=True))
+        return d.tolist(), d
 
     def expected_box(self, X: np.ndarray) -> tuple[float, float]:
         """(width, height) in pixels of the image of the table points X (N, 3); (1, 1) if any is behind the camera."""
@@ -99,14 +112,42 @@ class CameraModel:
         return float(hi[0] - lo[0]), float(hi[1] - lo[1])
 
 
+#: up to this many points, per-point arithmetic runs on Python floats (numpy's per-call overhead
+#: dominates on a few points); the products with the camera matrices stay numpy's (BLAS) calls
+_FEW = 8
+
+
+def _unit_rows(d: np.ndarray) -> list[list[float]]:
+    """The rows of d (N, 3) over their lengths, computed as ``d / np.sqrt((d * d).sum(axis=1,
+    keepdims=True))`` computes them: the squares summed left to right, the same sqrt and divisions."""
+    out = []
+    for x, y, z in d.tolist():
+        n = math.sqrt((x * x + y * y) + z * z)
+        out.append([x / n, y / n, z / n])
+    return out
+
+
 def triangulate(left: CameraModel, right: CameraModel, uv_left, uv_right) -> np.ndarray:
     """(N, 3) table points closest to both rays (midpoint of the common perpendicular)."""
-    d1, d2 = left.ray(uv_left), right.ray(uv_right)
+    r1, d1 = left._ray_rows(uv_left)
+    r2, d2 = right._ray_rows(uv_right)
     c1, c2 = left.C, right.C
     w0 = c1 - c2
-    b = (d1 * d2).sum(axis=1)              # unit rays: d1.d1 = d2.d2 = 1
     d = d1 @ w0
     e = d2 @ w0
+    if len(d1) <= _FEW and len(d1) == len(d2):
+        # the same operations as below, point by point on floats (unit rays: d1.d1 = d2.d2 = 1)
+        cc = (c1 + c2).tolist()
+        out = []
+        for (x1, y1, z1), (x2, y2, z2), di, ei in zip(r1, r2, d.tolist(), e.tolist()):
+            b = (x1 * x2 + y1 * y2) + z1 * z2
+            den = max(1.0 - b * b, 1e-12)
+            s = (b * ei - di) / den
+            t = (ei - b * di) / den
+            out.append([0.5 * ((cc[0] + s * x1) + t * x2), 0.5 * ((cc[1] + s * y1) + t * y2),
+                        0.5 * ((cc[2] + s * z1) + t * z2)])
+        return np.array(out)
+    b = (d1 * d2).sum(axis=1)              # unit rays: d1.d1 = d2.d2 = 1
     den = np.maximum(1.0 - b * b, 1e-12)
     s = ((b * e - d) / den)[:, None]
     t = ((e - b * d) / den)[:, None]
@@ -115,6 +156,14 @@ def triangulate(left: CameraModel, right: CameraModel, uv_left, uv_right) -> np.
 
 def on_plane(cam: CameraModel, uv, z: float) -> np.ndarray:
     """(N, 3) points where the rays through pixels uv meet the horizontal plane at table height z."""
-    d = cam.ray(uv)
+    rows, d = cam._ray_rows(uv)
+    if len(rows) <= _FEW:
+        C = cam.C.tolist()
+        h = float(z - cam.C[2])
+        out = []
+        for x, y, w in rows:
+            s = h / w if abs(w) > 1e-9 else math.nan
+            out.append([C[0] + s * x, C[1] + s * y, C[2] + s * w])
+        return np.array(out)
     s = (z - cam.C[2]) / np.where(np.abs(d[:, 2]) > 1e-9, d[:, 2], np.nan)
     return cam.C + s[:, None] * d
