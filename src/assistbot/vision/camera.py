@@ -158,12 +158,43 @@ def on_plane(cam: CameraModel, uv, z: float) -> np.ndarray:
     """(N, 3) points where the rays through pixels uv meet the horizontal plane at table height z."""
     rows, d = cam._ray_rows(uv)
     if len(rows) <= _FEW:
-        C = cam.C.tolist()
-        h = float(z - cam.C[2])
-        out = []
-        for x, y, w in rows:
-            s = h / w if abs(w) > 1e-9 else math.nan
-            out.append([C[0] + s * x, C[1] + s * y, C[2] + s * w])
-        return np.array(out)
+        return np.array(_on_plane_rows(cam, rows, z))
     s = (z - cam.C[2]) / np.where(np.abs(d[:, 2]) > 1e-9, d[:, 2], np.nan)
     return cam.C + s[:, None] * d
+
+
+def on_plane_rows(cam: CameraModel, uv, z: float) -> list[list[float]]:
+    """`on_plane` of a few pixels, as rows of floats."""
+    rows, d = cam._ray_rows(uv)
+    if len(rows) <= _FEW:
+        return _on_plane_rows(cam, rows, z)
+    return on_plane(cam, uv, z).tolist()
+
+
+def _on_plane_rows(cam: CameraModel, rows: list, z: float) -> list[list[float]]:
+    C = cam.C.tolist()
+    h = float(z - cam.C[2])
+    out = []
+    for x, y, w in rows:
+        s = h / w if abs(w) > 1e-9 else math.nan
+        out.append([C[0] + s * x, C[1] + s * y, C[2] + s * w])
+    return out
+
+
+_PAIR: list = [None, None, None, None]     # the last camera pair's stacked P columns (see expected_boxes)
+
+
+def expected_boxes(cams: tuple[CameraModel, CameraModel], X: np.ndarray) -> list[tuple[float, float]]:
+    """`CameraModel.expected_box` of the same points in both cameras, with one product of X and both
+    cameras' matrices side by side (each column is the same dot product as in the camera's own)."""
+    left, right = cams
+    if _PAIR[0] is not left or _PAIR[1] is not right:
+        (Al, tl), (Ar, tr) = left._P_parts, right._P_parts
+        _PAIR[:] = [left, right, np.hstack([Al, Ar]), np.concatenate([tl, tr])]
+    h = (X @ _PAIR[2] + _PAIR[3]).reshape(len(X), 2, 3)
+    z = h[:, :, 2:]
+    if not z.min() > 1e-6:
+        return [cam.expected_box(X) for cam in cams]
+    uv = h[:, :, :2] / z
+    hi, lo = uv.max(axis=0).tolist(), uv.min(axis=0).tolist()
+    return [(hi[c][0] - lo[c][0], hi[c][1] - lo[c][1]) for c in (0, 1)]

@@ -31,7 +31,7 @@ import numpy as np
 
 cv2.setNumThreads(1)   # per-frame work on small images: OpenCV's thread pool costs more than it saves
 
-from assistbot.vision.camera import CameraModel, on_plane, triangulate
+from assistbot.vision.camera import CameraModel, expected_boxes, on_plane_rows, triangulate
 from assistbot.vision.segment import LABEL, Blob, ColourTable, components_each
 from assistbot.world import layout
 
@@ -267,13 +267,17 @@ class Detector:
         r_obj = layout.OBJECT_RADIUS[name]
         on_table = abs(Xb[2]) < ON_TABLE_TOL
         if on_table:
+            # on floats, the operations of: P = on_plane(...)[0]; hdir = P[:2] - C[:2];
+            # P[:2] += r_obj * hdir / np.linalg.norm(hdir); pos = np.mean([P_left, P_right], axis=0)
             pts = []
             for cam, roi in zip(cams, rois):
-                P = on_plane(cam, roi.bottom, 0.0)[0]
-                hdir = P[:2] - cam.C[:2]
-                P[:2] += r_obj * hdir / math.sqrt(hdir.dot(hdir))     # np.linalg.norm(hdir)
-                pts.append(P)
-            pos = (pts[0] + pts[1]) / 2      # np.mean(pts, axis=0)
+                px, py, pz = on_plane_rows(cam, roi.bottom, 0.0)[0]
+                cx, cy = cam.C[:2].tolist()
+                hx, hy = px - cx, py - cy
+                n = math.sqrt(hx * hx + hy * hy)
+                pts.append((px + r_obj * hx / n, py + r_obj * hy / n, pz))
+            (ax, ay, az), (bx, by, bz) = pts
+            pos = np.array([(ax + bx) / 2, (ay + by) / 2, (az + bz) / 2])
         else:   # lifted: x, y from the axis in both images; the height from the silhouette's centroid
             pos = triangulate(cams[0], cams[1], rois[0].centroid, rois[1].centroid)[0]
             pos[2] -= CENTROID_Z[name]
@@ -294,9 +298,7 @@ class Detector:
         extent = 9.0
         H, W = imgs[0].shape[:2]
         inside = True
-        outline = pos + _OUTLINE[name]
-        for cam, roi, bb in zip(cams, rois, (a, b)):
-            ew, eh = cam.expected_box(outline)
+        for (ew, eh), roi, bb in zip(expected_boxes(cams, pos + _OUTLINE[name]), rois, (a, b)):
             extent = min(extent, roi.h_capped / max(eh, 1.0), roi.w / max(ew, 1.0))
             x, y, w, h = bb.bbox
             inside &= x > 1 and y > 1 and x + w < W - 1 and y + h < H - 1
@@ -372,8 +374,8 @@ class Detector:
             x0, y0, x1, y1 = max(0, x - 2), max(0, y - 2), min(L.shape[1], x + w + 2), min(L.shape[0], y + h + 2)
             sub = L[y0:y1, x0:x1]
             skin = cc[y0:y1, x0:x1] == bb.label        # this blob's own pixels (from the one components pass)
-            ys, xs = np.nonzero(skin)
-            P = np.column_stack([xs + x0, ys + y0]).astype(float) * 2 + 0.5
+            # the pixels' centres (x, y) at full resolution: small integers and halves, exact in any order
+            P = np.argwhere(skin)[:, ::-1] * 2.0 + [2 * x0 + 0.5, 2 * y0 + 0.5]
             sleeve = cv2.dilate((sub == _T).view(np.uint8), _DILATE3) > 0
             touch = np.nonzero(skin & sleeve)
             if len(touch[0]) >= 2:

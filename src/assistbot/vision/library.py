@@ -130,8 +130,9 @@ class Classifier:
             h = np.tanh(np.einsum("f,mfh->mh", z, m["W1"]) + m["b1"])
             logit = np.einsum("mh,mhc->mc", h, m["W2"]) + m["b2"]
             pr = np.exp(logit - logit.max(axis=1, keepdims=True))
-            pr = (pr / pr.sum(axis=1, keepdims=True)).mean(axis=0)
-            c = int(np.argmax(pr))
+            pr = pr / pr.sum(axis=1, keepdims=True)
+            pr = pr.sum(axis=0) / len(pr)      # .mean(axis=0): the same sum and division
+            c = int(pr.argmax())
             return self.classes[c], float(pr[c]), f[:len(f) - len(extra)]
         d = np.sum((self.X - z) ** 2, axis=1)
         idx = np.argpartition(d, min(K_NEIGHBOURS, len(d) - 1))[:K_NEIGHBOURS]
