@@ -24,6 +24,22 @@ from assistbot.world.layout import TABLE_Z
 _FLIP = np.diag([1.0, -1.0, -1.0])
 
 
+_INV_K: dict[bytes, np.ndarray] = {}
+
+
+def _inv_K(K: np.ndarray) -> np.ndarray:
+    """np.linalg.inv(K), kept per distinct K: the intrinsics stay while each frame's cameras are new
+    objects (their pose moves with the head), so each frame's `_Q` would invert the same K again."""
+    key = (K.shape, K.dtype.str, K.tobytes())
+    inv = _INV_K.get(key)
+    if inv is None:
+        if len(_INV_K) >= 16:
+            _INV_K.clear()
+        inv = _INV_K[key] = np.linalg.inv(K)
+        inv.flags.writeable = False
+    return inv
+
+
 @dataclass(frozen=True)
 class CameraModel:
     """One camera: K (3x3, pixels), R (world->optical rotation), centre C (table frame, m)."""
@@ -59,7 +75,7 @@ class CameraModel:
     def _Q(self) -> np.ndarray:
         """Homogeneous pixel (as a row) -> ray direction in the table frame: inv(K).T @ R (computed once:
         vision casts many small batches of rays a frame)."""
-        return np.linalg.inv(self.K).T @ self.R
+        return _inv_K(self.K).T @ self.R
 
     def project(self, X: np.ndarray) -> np.ndarray:
         """(N, 3) table points -> (N, 2) pixels (u, v); points behind the camera give nan."""
