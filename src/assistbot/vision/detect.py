@@ -51,6 +51,7 @@ FACE_Z = 0.40              # m above the table: skin higher than this is the fac
 STATIC_SKIN_R = 0.08       # m: skin this close to a calibrated static spot is not the working hand
 HAND_REACH = 0.10          # m: hand crop half-size
 _B, _S, _G, _L, _K, _T = (LABEL[p] for p in ("bottle", "stopper", "glass", "liquid", "skin", "shirt"))
+assert _L == _G + 1      # the glass mask is one inRange over both labels
 _DILATE = np.ones((5, 5), np.uint8)
 _DILATE3 = np.ones((3, 3), np.uint8)
 #: label -> "is one of these parts", per part set used for a silhouette
@@ -107,6 +108,18 @@ def _pct(x: np.ndarray, q: float) -> float:
     return float(x[lo] + (k - lo) * (x[hi] - x[lo]))
 
 
+def _median0(X: np.ndarray) -> np.ndarray:
+    """np.median(X, axis=0) of a (N, k) float array, N >= 1: the middle of each column sorted, or the
+    mean of the two middle ones (their sum halved, as np.mean takes it); np.median itself if any is nan."""
+    srt = np.sort(X, axis=0)
+    n = len(srt)
+    if np.isnan(srt[-1]).any():
+        return np.median(X, axis=0)
+    if n % 2:
+        return srt[n // 2]
+    return (srt[n // 2 - 1] + srt[n // 2]) / 2
+
+
 def _crop(img: np.ndarray, x0: int, y0: int, x1: int, y1: int, size: tuple[int, int]) -> np.ndarray:
     h, w = img.shape[:2]
     pad = [max(0, -y0), max(0, y1 - h), max(0, -x0), max(0, x1 - w)]
@@ -121,12 +134,14 @@ def _crop(img: np.ndarray, x0: int, y0: int, x1: int, y1: int, size: tuple[int, 
 def _match(a: Blob, cands: list[Blob]) -> Blob | None:
     """The right-image blob for left-image blob a: same rows, positive disparity, similar area."""
     best, score = None, 1e9
+    au, av = a.centroid.tolist()
     for b in cands:
-        dv = abs(a.centroid[1] - b.centroid[1])
-        du = a.centroid[0] - b.centroid[0]
+        bu, bv = b.centroid.tolist()
+        dv = abs(av - bv)
+        du = au - bu
         if dv > 12 or not (-2 < du < 140):
             continue
-        s = dv + 10 * abs(np.log((a.area + 1) / (b.area + 1)))
+        s = dv + 10 * abs(math.log((a.area + 1) / (b.area + 1)))     # math.log: the same values as np.log
         if s < score:
             best, score = b, s
     return best
@@ -167,7 +182,7 @@ class _Roi:
             l1, l0 = 0.5 * (a + c) + root, 0.5 * (a + c) - root
             if l1 > 1.5 * l0:   # elongated: the angle of the main axis (b, l1 - a) from the image vertical
                 vx, vy = (b, l1 - a) if abs(b) > 1e-12 else ((1.0, 0.0) if a >= c else (0.0, 1.0))
-                self.tilt = float(np.arccos(min(1.0, abs(vy) / np.hypot(vx, vy))))
+                self.tilt = math.acos(min(1.0, abs(vy) / np.hypot(vx, vy)))   # math.acos: libm's acos, as np.arccos
         self.area = float(n)
         self.h_capped = self.h
         self._axis: tuple[np.ndarray, np.ndarray] | None = None
@@ -193,7 +208,7 @@ class _Roi:
             return self.tilt
         dv = v - v.sum() / v.size              # v.mean(), u.mean(): the same sums and division
         slope = float(dv @ (u - u.sum() / u.size)) / float(dv @ dv)   # the least-squares line's slope
-        return float(np.arctan(abs(slope)))
+        return math.atan(abs(slope))            # libm's atan, as np.arctan
 
     def axis(self) -> tuple[np.ndarray, np.ndarray]:
         """(rows, mid-columns), absolute pixels, of the rows that show the silhouette's full width: there
@@ -225,7 +240,8 @@ class Detector:
         lab = tuple(self.table.labels(im, 2) for im in imgs)
         det = Detections(labels=lab)
         # the blobs of each part in each camera (a right-image part only where the left has one to pair with)
-        found, views = components_each([[L == _B, (L == _G) | (L == _L), L == _K] for L in lab],
+        # (glass or liquid: one inRange, 0/255, the labels being consecutive)
+        found, views = components_each([[L == _B, cv2.inRange(L, _G, _L), L == _K] for L in lab],
                                        ("bottle", "glass", "skin"), (2, 2, 6), pairs_only=True)
         blobs = [{"bottle": f[0], "glass": f[1], "skin": (f[2], v[2])} for f, v in zip(found, views)]
         for name in ("bottle", "glass"):
@@ -291,7 +307,7 @@ class Detector:
             if common.size >= AXIS_ROWS:
                 v = common + 0.5
                 X = triangulate(cams[0], cams[1], np.column_stack([ul[il], v]), np.column_stack([ur[ir], v]))
-                pos[:2] = np.median(X[:, :2], axis=0)
+                pos[:2] = _median0(X[:, :2])
             else:
                 hdir = pos[:2] - 0.5 * (cams[0].C[:2] + cams[1].C[:2])
                 pos[:2] += 0.5 * r_obj * hdir / np.linalg.norm(hdir)

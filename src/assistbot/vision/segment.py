@@ -99,7 +99,8 @@ def components(mask: np.ndarray, part: str, keep: int = 4, scale: int = 2) -> tu
 
 def components_each(masks: list[list[np.ndarray]], parts: tuple[str, ...], keep: tuple[int, ...], scale: int = 2,
                      pairs_only: bool = False):
-    """Connected components of several (half-resolution) masks: masks[camera][k].  Returns, per camera
+    """Connected components of several (half-resolution) masks: masks[camera][k] (bool, or uint8 with
+    nonzero pixels in).  Returns, per camera
     and part, the `keep[k]` largest blobs (full-resolution pixels; ``Blob.label`` indexes the views) and
     per camera and part the label image of that mask (its view).
 
