@@ -242,7 +242,7 @@ class Detector:
         # the blobs of each part in each camera (a right-image part only where the left has one to pair with)
         # (glass or liquid: one inRange, 0/255, the labels being consecutive)
         found, views = components_each([[L == _B, cv2.inRange(L, _G, _L), L == _K] for L in lab],
-                                       ("bottle", "glass", "skin"), (2, 2, 6), pairs_only=True)
+                                       ("bottle", "glass", "skin"), (2, 2, 6), pairs_only=True, views_of=(2,))
         blobs = [{"bottle": f[0], "glass": f[1], "skin": (f[2], v[2])} for f, v in zip(found, views)]
         for name in ("bottle", "glass"):
             det.objects[name] = self._object(name, blobs, imgs, cams)

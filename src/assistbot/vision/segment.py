@@ -98,7 +98,7 @@ def components(mask: np.ndarray, part: str, keep: int = 4, scale: int = 2) -> tu
 
 
 def components_each(masks: list[list[np.ndarray]], parts: tuple[str, ...], keep: tuple[int, ...], scale: int = 2,
-                     pairs_only: bool = False):
+                     pairs_only: bool = False, views_of: tuple[int, ...] | None = None):
     """Connected components of several (half-resolution) masks: masks[camera][k] (bool, or uint8 with
     nonzero pixels in).  Returns, per camera
     and part, the `keep[k]` largest blobs (full-resolution pixels; ``Blob.label`` indexes the views) and
@@ -112,7 +112,8 @@ def components_each(masks: list[list[np.ndarray]], parts: tuple[str, ...], keep:
     on the whole mask; the statistics are moved back to the whole mask's pixels (the centroids from
     their exact integer sums, as OpenCV divides them).  An empty mask, and with ``pairs_only`` a
     later camera's mask of a part the first camera has no blob of (nothing to pair it with), get no
-    blobs and a zero view without the call."""
+    blobs and a zero view without the call.  ``views_of``: the mask indices k whose label images the caller
+    reads (None: all); the others' views are None (no whole-mask label image is made for them)."""
     out: list[list[list[Blob]]] = []
     views = []
     for c, cm in enumerate(masks):
@@ -123,16 +124,20 @@ def components_each(masks: list[list[np.ndarray]], parts: tuple[str, ...], keep:
                 bw = 0
             else:
                 bx, by, bw, bh = cv2.boundingRect(m8)
+            want = views_of is None or k in views_of
             if bw == 0:
                 oc.append([])
-                vc.append(np.zeros(m.shape, np.int32))
+                vc.append(np.zeros(m.shape, np.int32) if want else None)
                 continue
             x0, y0 = bx & ~1, by & ~1
             x1, y1 = bx + bw, by + bh
             n, sub, stats, cents = cv2.connectedComponentsWithStatsWithAlgorithm(m8[y0:y1, x0:x1], 8, cv2.CV_32S, cv2.CCL_GRANA)
-            lab = np.zeros(m.shape, np.int32)
-            lab[y0:y1, x0:x1] = sub
-            vc.append(lab)
+            if want:
+                lab = np.zeros(m.shape, np.int32)
+                lab[y0:y1, x0:x1] = sub
+                vc.append(lab)
+            else:
+                vc.append(None)
             res: list[Blob] = []
             if n > 1:
                 # the largest components of at least the minimum area, larger first, ties in label order
