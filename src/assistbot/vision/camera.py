@@ -133,29 +133,40 @@ class CameraModel:
 _FEW = 8
 
 
-def _unit_rows(d: np.ndarray) -> list[list[float]]:
-    """The rows of d (N, 3) over their lengths, computed as ``d / np.sqrt((d * d).sum(axis=1,
-    keepdims=True))`` computes them: the squares summed left to right, the same sqrt and divisions."""
+def _unit_rows(d) -> list[list[float]]:
+    """The rows of d (N, 3; an array or rows of floats) over their lengths, computed as ``d / np.sqrt((d *
+    d).sum(axis=1, keepdims=True))`` computes them: the squares summed left to right, the same sqrt and
+    divisions."""
     out = []
-    for x, y, z in d.tolist():
+    for x, y, z in (d.tolist() if isinstance(d, np.ndarray) else d):
         n = math.sqrt((x * x + y * y) + z * z)
         out.append([x / n, y / n, z / n])
     return out
 
 
+#: the last camera pair and its stacked constants (see triangulate): one tuple, read and replaced whole
+_TRI: list = [(None, None, None)]
+
+
 def triangulate(left: CameraModel, right: CameraModel, uv_left, uv_right) -> np.ndarray:
     """(N, 3) table points closest to both rays (midpoint of the common perpendicular)."""
-    r1, d1 = left._ray_rows(uv_left)
-    r2, d2 = right._ray_rows(uv_right)
-    c1, c2 = left.C, right.C
-    w0 = c1 - c2
-    d = d1 @ w0
-    e = d2 @ w0
-    if len(d1) <= _FEW and len(d1) == len(d2):
-        # the same operations as below, point by point on floats (unit rays: d1.d1 = d2.d2 = 1)
-        cc = (c1 + c2).tolist()
+    a = np.reshape(np.asarray(uv_left, float), (-1, 2))
+    b = np.reshape(np.asarray(uv_right, float), (-1, 2))
+    if len(a) <= _FEW and len(a) == len(b):
+        # a few points: both cameras' rays in one stacked product (each slice is the same BLAS
+        # product as the camera's own), then the same operations as below, point by point on
+        # floats (unit rays: d1.d1 = d2.d2 = 1)
+        ent = _TRI[0]
+        if ent[0] is not left or ent[1] is not right:
+            (Ql, ql), (Qr, qr) = left._Q_parts, right._Q_parts
+            ent = _TRI[0] = (left, right, (np.stack([Ql, Qr]), np.stack([ql, qr])[:, None, :], left.C - right.C,
+                                           (left.C + right.C).tolist()))
+        QS, qS, w0, cc = ent[2]
+        raw = (np.stack([a, b]) @ QS + qS).tolist()
+        r1, r2 = _unit_rows(raw[0]), _unit_rows(raw[1])
+        d, e = (np.array([r1, r2]) @ w0).tolist()
         out = []
-        for (x1, y1, z1), (x2, y2, z2), di, ei in zip(r1, r2, d.tolist(), e.tolist()):
+        for (x1, y1, z1), (x2, y2, z2), di, ei in zip(r1, r2, d, e):
             b = (x1 * x2 + y1 * y2) + z1 * z2
             den = max(1.0 - b * b, 1e-12)
             s = (b * ei - di) / den
@@ -163,6 +174,11 @@ def triangulate(left: CameraModel, right: CameraModel, uv_left, uv_right) -> np.
             out.append([0.5 * ((cc[0] + s * x1) + t * x2), 0.5 * ((cc[1] + s * y1) + t * y2),
                         0.5 * ((cc[2] + s * z1) + t * z2)])
         return np.array(out)
+    d1, d2 = left.ray(a), right.ray(b)
+    c1, c2 = left.C, right.C
+    w0 = c1 - c2
+    d = d1 @ w0
+    e = d2 @ w0
     b = (d1 * d2).sum(axis=1)              # unit rays: d1.d1 = d2.d2 = 1
     den = np.maximum(1.0 - b * b, 1e-12)
     s = ((b * e - d) / den)[:, None]
@@ -197,17 +213,19 @@ def _on_plane_rows(cam: CameraModel, rows: list, z: float) -> list[list[float]]:
     return out
 
 
-_PAIR: list = [None, None, None, None]     # the last camera pair's stacked P columns (see expected_boxes)
+#: the last camera pair and its P columns side by side (see expected_boxes): one tuple, read and replaced whole
+_PAIR: list = [(None, None, None, None)]
 
 
 def expected_boxes(cams: tuple[CameraModel, CameraModel], X: np.ndarray) -> list[tuple[float, float]]:
     """`CameraModel.expected_box` of the same points in both cameras, with one product of X and both
     cameras' matrices side by side (each column is the same dot product as in the camera's own)."""
     left, right = cams
-    if _PAIR[0] is not left or _PAIR[1] is not right:
+    ent = _PAIR[0]
+    if ent[0] is not left or ent[1] is not right:
         (Al, tl), (Ar, tr) = left._P_parts, right._P_parts
-        _PAIR[:] = [left, right, np.hstack([Al, Ar]), np.concatenate([tl, tr])]
-    h = (X @ _PAIR[2] + _PAIR[3]).reshape(len(X), 2, 3)
+        ent = _PAIR[0] = (left, right, np.hstack([Al, Ar]), np.concatenate([tl, tr]))
+    h = (X @ ent[2] + ent[3]).reshape(len(X), 2, 3)
     z = h[:, :, 2:]
     if not z.min() > 1e-6:
         return [cam.expected_box(X) for cam in cams]

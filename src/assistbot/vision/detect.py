@@ -128,7 +128,7 @@ def _crop(img: np.ndarray, x0: int, y0: int, x1: int, y1: int, size: tuple[int, 
         sub = cv2.copyMakeBorder(sub, *pad, cv2.BORDER_CONSTANT, value=0)
     if sub.size == 0:
         return np.zeros(size[::-1], np.float32)
-    return cv2.resize(sub.astype(np.float32), size, interpolation=cv2.INTER_AREA)
+    return cv2.resize(sub.astype(np.float32, copy=False), size, interpolation=cv2.INTER_AREA)
 
 
 def _match(a: Blob, cands: list[Blob]) -> Blob | None:
