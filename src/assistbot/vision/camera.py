@@ -144,8 +144,36 @@ def _unit_rows(d) -> list[list[float]]:
     return out
 
 
-#: the last camera pair and its stacked constants (see triangulate): one tuple, read and replaced whole
-_TRI: list = [(None, None, None)]
+#: the last camera pair and its stacked constants (see `_pair`): one tuple, read and replaced whole
+_PAIR: list = [(None, None, None)]
+
+
+def _pair(left: CameraModel, right: CameraModel) -> tuple:
+    """Constants of a camera pair for `triangulate` and `expected_boxes`, kept for the last pair (each
+    frame's cameras are new objects): the ray matrices stacked ((2, 2, 3) and (2, 1, 3): the rows of
+    each camera's `_Q`), the baseline C_l - C_r, C_l + C_r as floats, and both cameras' P[:, :3].T side
+    by side (3, 6) with their P[:, 3] (6,).  With one K (the head's cameras) they come from stacked
+    products of both cameras at once: per slice the same BLAS products as each camera's own `_Q` and
+    `P` (identical on all benchmark cameras); else from the cameras' own."""
+    ent = _PAIR[0]
+    if ent[0] is left and ent[1] is right:
+        return ent[2]
+    if np.array_equal(left.K, right.K):
+        K = left.K
+        Rs = np.stack([left.R, right.R])
+        Qs = _inv_K(K).T @ Rs                                          # inv(K).T @ R, per camera
+        Ps = K @ np.concatenate([Rs, (-Rs) @ np.stack([left.C, right.C])[:, :, None]], axis=2)   # P per camera
+        QS, qS = np.ascontiguousarray(Qs[:, :2]), Qs[:, 2:]
+        A2 = np.ascontiguousarray(Ps[:, :, :3].transpose(2, 0, 1)).reshape(3, 6)
+        t2 = Ps[:, :, 3].reshape(6)
+    else:
+        (Ql, ql), (Qr, qr) = left._Q_parts, right._Q_parts
+        (Al, tl), (Ar, tr) = left._P_parts, right._P_parts
+        QS, qS = np.stack([Ql, Qr]), np.stack([ql, qr])[:, None, :]
+        A2, t2 = np.hstack([Al, Ar]), np.concatenate([tl, tr])
+    consts = (QS, qS, left.C - right.C, (left.C + right.C).tolist(), A2, t2)
+    _PAIR[0] = (left, right, consts)
+    return consts
 
 
 def triangulate(left: CameraModel, right: CameraModel, uv_left, uv_right) -> np.ndarray:
@@ -156,12 +184,7 @@ def triangulate(left: CameraModel, right: CameraModel, uv_left, uv_right) -> np.
         # a few points: both cameras' rays in one stacked product (each slice is the same BLAS
         # product as the camera's own), then the same operations as below, point by point on
         # floats (unit rays: d1.d1 = d2.d2 = 1)
-        ent = _TRI[0]
-        if ent[0] is not left or ent[1] is not right:
-            (Ql, ql), (Qr, qr) = left._Q_parts, right._Q_parts
-            ent = _TRI[0] = (left, right, (np.stack([Ql, Qr]), np.stack([ql, qr])[:, None, :], left.C - right.C,
-                                           (left.C + right.C).tolist()))
-        QS, qS, w0, cc = ent[2]
+        QS, qS, w0, cc, _, _ = _pair(left, right)
         raw = (np.stack([a, b]) @ QS + qS).tolist()
         r1, r2 = _unit_rows(raw[0]), _unit_rows(raw[1])
         d, e = (np.array([r1, r2]) @ w0).tolist()
@@ -213,19 +236,11 @@ def _on_plane_rows(cam: CameraModel, rows: list, z: float) -> list[list[float]]:
     return out
 
 
-#: the last camera pair and its P columns side by side (see expected_boxes): one tuple, read and replaced whole
-_PAIR: list = [(None, None, None, None)]
-
-
 def expected_boxes(cams: tuple[CameraModel, CameraModel], X: np.ndarray) -> list[tuple[float, float]]:
     """`CameraModel.expected_box` of the same points in both cameras, with one product of X and both
     cameras' matrices side by side (each column is the same dot product as in the camera's own)."""
-    left, right = cams
-    ent = _PAIR[0]
-    if ent[0] is not left or ent[1] is not right:
-        (Al, tl), (Ar, tr) = left._P_parts, right._P_parts
-        ent = _PAIR[0] = (left, right, np.hstack([Al, Ar]), np.concatenate([tl, tr]))
-    h = (X @ ent[2] + ent[3]).reshape(len(X), 2, 3)
+    *_, A2, t2 = _pair(*cams)
+    h = (X @ A2 + t2).reshape(len(X), 2, 3)
     z = h[:, :, 2:]
     if not z.min() > 1e-6:
         return [cam.expected_box(X) for cam in cams]

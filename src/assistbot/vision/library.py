@@ -70,7 +70,7 @@ def template_scores(crop: np.ndarray | None, protos: list[list[np.ndarray]]) -> 
     if crop is None or not any(protos):
         return np.zeros(0, np.float32)
     img, cls, stride, _, (cols, group) = _mosaic_entry(protos)
-    r = cv2.matchTemplate(img, crop.astype(np.float32), cv2.TM_CCOEFF_NORMED)
+    r = cv2.matchTemplate(img, crop.astype(np.float32, copy=False), cv2.TM_CCOEFF_NORMED)
     n = len(cls)
     if r.shape[1] > cols[-1]:
         # only the shifts' columns, gathered at once (the usual case: a crop of the templates' size)
