@@ -11,6 +11,7 @@ forward kinematics from the model's head bodies and the pan/tilt joint angles in
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 from functools import cached_property
 
@@ -21,6 +22,22 @@ from assistbot.world.layout import TABLE_Z
 
 #: optical frame (u right, v down, forward) in MuJoCo camera axes
 _FLIP = np.diag([1.0, -1.0, -1.0])
+
+
+_INV_K: dict[bytes, np.ndarray] = {}
+
+
+def _inv_K(K: np.ndarray) -> np.ndarray:
+    """np.linalg.inv(K), kept per distinct K: the intrinsics stay while each frame's cameras are new
+    objects (their pose moves with the head), so each frame's `_Q` would invert the same K again."""
+    key = (K.shape, K.dtype.str, K.tobytes())
+    inv = _INV_K.get(key)
+    if inv is None:
+        if len(_INV_K) >= 16:
+            _INV_K.clear()
+        inv = _INV_K[key] = np.linalg.inv(K)
+        inv.flags.writeable = False
+    return inv
 
 
 @dataclass(frozen=True)
@@ -58,7 +75,7 @@ class CameraModel:
     def _Q(self) -> np.ndarray:
         """Homogeneous pixel (as a row) -> ray direction in the table frame: inv(K).T @ R (computed once:
         vision casts many small batches of rays a frame)."""
-        return np.linalg.inv(self.K).T @ self.R
+        return _inv_K(self.K).T @ self.R
 
     def project(self, X: np.ndarray) -> np.ndarray:
         """(N, 3) table points -> (N, 2) pixels (u, v); points behind the camera give nan."""
@@ -69,30 +86,123 @@ class CameraModel:
         out = uv[:, :2] / np.where(z > 1e-6, z, np.nan)
         return out
 
+    @cached_property
+    def _Q_parts(self) -> tuple[np.ndarray, np.ndarray]:
+        """(the pixel rows of `_Q`, its constant row): views taken once."""
+        Q = self._Q
+        return Q[:2], Q[2]
+
+    @cached_property
+    def _P_parts(self) -> tuple[np.ndarray, np.ndarray]:
+        """(P[:, :3].T, P[:, 3]): views of `P` taken once (the same arrays `expected_box` used to slice)."""
+        P = self.P
+        return P[:, :3].T, P[:, 3]
+
     def ray(self, uv) -> np.ndarray:
         """Unit direction (table frame) of the ray through pixel(s) (N, 2)."""
-        Q = self._Q
-        d = np.reshape(np.asarray(uv, float), (-1, 2)) @ Q[:2] + Q[2]
+        Q2, q = self._Q_parts
+        d = np.reshape(np.asarray(uv, float), (-1, 2)) @ Q2 + q
+        if len(d) <= _FEW:
+            return np.array(_unit_rows(d))
         return d / np.sqrt((d * d).sum(axis=1, keepdims=True))
+
+    def _ray_rows(self, uv) -> tuple[list, np.ndarray]:
+        """`ray` of a few pixels, as rows of floats and as the array."""
+        Q2, q = self._Q_parts
+        d = np.reshape(np.asarray(uv, float), (-1, 2)) @ Q2 + q
+        if len(d) <= _FEW:
+            rows = _unit_rows(d)
+            return rows, np.array(rows)
+        d = d / np.sqrt((d * d).sum(axis=1, keepdims=True))
+        return d.tolist(), d
 
     def expected_box(self, X: np.ndarray) -> tuple[float, float]:
         """(width, height) in pixels of the image of the table points X (N, 3); (1, 1) if any is behind the camera."""
-        h = X @ self.P[:, :3].T + self.P[:, 3]
+        A, t = self._P_parts
+        h = X @ A + t
         z = h[:, 2]
         if z.min() <= 1e-6:
             return 1.0, 1.0
-        u, v = h[:, 0] / z, h[:, 1] / z
-        return float(u.max() - u.min()), float(v.max() - v.min())
+        uv = h[:, :2] / z[:, None]          # u, v = h[:, 0] / z, h[:, 1] / z
+        hi, lo = uv.max(axis=0), uv.min(axis=0)
+        return float(hi[0] - lo[0]), float(hi[1] - lo[1])
+
+
+#: up to this many points, per-point arithmetic runs on Python floats (numpy's per-call overhead
+#: dominates on a few points); the products with the camera matrices stay numpy's (BLAS) calls
+_FEW = 8
+
+
+def _unit_rows(d) -> list[list[float]]:
+    """The rows of d (N, 3; an array or rows of floats) over their lengths, computed as ``d / np.sqrt((d *
+    d).sum(axis=1, keepdims=True))`` computes them: the squares summed left to right, the same sqrt and
+    divisions."""
+    out = []
+    for x, y, z in (d.tolist() if isinstance(d, np.ndarray) else d):
+        n = math.sqrt((x * x + y * y) + z * z)
+        out.append([x / n, y / n, z / n])
+    return out
+
+
+#: the last camera pair and its stacked constants (see `_pair`): one tuple, read and replaced whole
+_PAIR: list = [(None, None, None)]
+
+
+def _pair(left: CameraModel, right: CameraModel) -> tuple:
+    """Constants of a camera pair for `triangulate` and `expected_boxes`, kept for the last pair (each
+    frame's cameras are new objects): the ray matrices stacked ((2, 2, 3) and (2, 1, 3): the rows of
+    each camera's `_Q`), the baseline C_l - C_r, C_l + C_r as floats, and both cameras' P[:, :3].T side
+    by side (3, 6) with their P[:, 3] (6,).  With one K (the head's cameras) they come from stacked
+    products of both cameras at once: per slice the same BLAS products as each camera's own `_Q` and
+    `P` (identical on all benchmark cameras); else from the cameras' own."""
+    ent = _PAIR[0]
+    if ent[0] is left and ent[1] is right:
+        return ent[2]
+    if np.array_equal(left.K, right.K):
+        K = left.K
+        Rs = np.stack([left.R, right.R])
+        Qs = _inv_K(K).T @ Rs                                          # inv(K).T @ R, per camera
+        Ps = K @ np.concatenate([Rs, (-Rs) @ np.stack([left.C, right.C])[:, :, None]], axis=2)   # P per camera
+        QS, qS = np.ascontiguousarray(Qs[:, :2]), Qs[:, 2:]
+        A2 = np.ascontiguousarray(Ps[:, :, :3].transpose(2, 0, 1)).reshape(3, 6)
+        t2 = Ps[:, :, 3].reshape(6)
+    else:
+        (Ql, ql), (Qr, qr) = left._Q_parts, right._Q_parts
+        (Al, tl), (Ar, tr) = left._P_parts, right._P_parts
+        QS, qS = np.stack([Ql, Qr]), np.stack([ql, qr])[:, None, :]
+        A2, t2 = np.hstack([Al, Ar]), np.concatenate([tl, tr])
+    consts = (QS, qS, left.C - right.C, (left.C + right.C).tolist(), A2, t2)
+    _PAIR[0] = (left, right, consts)
+    return consts
 
 
 def triangulate(left: CameraModel, right: CameraModel, uv_left, uv_right) -> np.ndarray:
     """(N, 3) table points closest to both rays (midpoint of the common perpendicular)."""
-    d1, d2 = left.ray(uv_left), right.ray(uv_right)
+    a = np.reshape(np.asarray(uv_left, float), (-1, 2))
+    b = np.reshape(np.asarray(uv_right, float), (-1, 2))
+    if len(a) <= _FEW and len(a) == len(b):
+        # a few points: both cameras' rays in one stacked product (each slice is the same BLAS
+        # product as the camera's own), then the same operations as below, point by point on
+        # floats (unit rays: d1.d1 = d2.d2 = 1)
+        QS, qS, w0, cc, _, _ = _pair(left, right)
+        raw = (np.stack([a, b]) @ QS + qS).tolist()
+        r1, r2 = _unit_rows(raw[0]), _unit_rows(raw[1])
+        d, e = (np.array([r1, r2]) @ w0).tolist()
+        out = []
+        for (x1, y1, z1), (x2, y2, z2), di, ei in zip(r1, r2, d, e):
+            b = (x1 * x2 + y1 * y2) + z1 * z2
+            den = max(1.0 - b * b, 1e-12)
+            s = (b * ei - di) / den
+            t = (ei - b * di) / den
+            out.append([0.5 * ((cc[0] + s * x1) + t * x2), 0.5 * ((cc[1] + s * y1) + t * y2),
+                        0.5 * ((cc[2] + s * z1) + t * z2)])
+        return np.array(out)
+    d1, d2 = left.ray(a), right.ray(b)
     c1, c2 = left.C, right.C
     w0 = c1 - c2
-    b = (d1 * d2).sum(axis=1)              # unit rays: d1.d1 = d2.d2 = 1
     d = d1 @ w0
     e = d2 @ w0
+    b = (d1 * d2).sum(axis=1)              # unit rays: d1.d1 = d2.d2 = 1
     den = np.maximum(1.0 - b * b, 1e-12)
     s = ((b * e - d) / den)[:, None]
     t = ((e - b * d) / den)[:, None]
@@ -101,6 +211,39 @@ def triangulate(left: CameraModel, right: CameraModel, uv_left, uv_right) -> np.
 
 def on_plane(cam: CameraModel, uv, z: float) -> np.ndarray:
     """(N, 3) points where the rays through pixels uv meet the horizontal plane at table height z."""
-    d = cam.ray(uv)
+    rows, d = cam._ray_rows(uv)
+    if len(rows) <= _FEW:
+        return np.array(_on_plane_rows(cam, rows, z))
     s = (z - cam.C[2]) / np.where(np.abs(d[:, 2]) > 1e-9, d[:, 2], np.nan)
     return cam.C + s[:, None] * d
+
+
+def on_plane_rows(cam: CameraModel, uv, z: float) -> list[list[float]]:
+    """`on_plane` of a few pixels, as rows of floats."""
+    rows, d = cam._ray_rows(uv)
+    if len(rows) <= _FEW:
+        return _on_plane_rows(cam, rows, z)
+    return on_plane(cam, uv, z).tolist()
+
+
+def _on_plane_rows(cam: CameraModel, rows: list, z: float) -> list[list[float]]:
+    C = cam.C.tolist()
+    h = float(z - cam.C[2])
+    out = []
+    for x, y, w in rows:
+        s = h / w if abs(w) > 1e-9 else math.nan
+        out.append([C[0] + s * x, C[1] + s * y, C[2] + s * w])
+    return out
+
+
+def expected_boxes(cams: tuple[CameraModel, CameraModel], X: np.ndarray) -> list[tuple[float, float]]:
+    """`CameraModel.expected_box` of the same points in both cameras, with one product of X and both
+    cameras' matrices side by side (each column is the same dot product as in the camera's own)."""
+    *_, A2, t2 = _pair(*cams)
+    h = (X @ A2 + t2).reshape(len(X), 2, 3)
+    z = h[:, :, 2:]
+    if not z.min() > 1e-6:
+        return [cam.expected_box(X) for cam in cams]
+    uv = h[:, :, :2] / z
+    hi, lo = uv.max(axis=0).tolist(), uv.min(axis=0).tolist()
+    return [(hi[c][0] - lo[c][0], hi[c][1] - lo[c][1]) for c in (0, 1)]

@@ -26,6 +26,7 @@ coordinates (m): an object's position is the centre of the base it stands on.
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, field
 
 import cv2
@@ -33,7 +34,7 @@ import numpy as np
 
 cv2.setNumThreads(1)   # per-frame work on small images: OpenCV's thread pool costs more than it saves
 
-from assistbot.vision.camera import CameraModel, on_plane, triangulate
+from assistbot.vision.camera import CameraModel, expected_boxes, on_plane_rows, triangulate
 from assistbot.vision.segment import LABEL, Blob, ColourTable, components_each
 from assistbot.world import layout
 
@@ -54,10 +55,13 @@ STATIC_SKIN_R = 0.08       # m: skin this close to a calibrated static spot is n
 STATIC_MARGIN = 2          # half-resolution px (~1-2 cm at the table) around the static cells' projections
 HAND_REACH = 0.10          # m: hand crop half-size
 _B, _S, _G, _L, _K, _T = (LABEL[p] for p in ("bottle", "stopper", "glass", "liquid", "skin", "shirt"))
+assert _L == _G + 1      # the glass mask is one inRange over both labels
 _DILATE = np.ones((5, 5), np.uint8)
 _DILATE3 = np.ones((3, 3), np.uint8)
 #: label -> "is one of these parts", per part set used for a silhouette
 _PART_SET = {ps: np.isin(np.arange(256), ps) for ps in ((_B,), (_G, _L))}
+#: the same as 0/1 look-up tables for cv2.LUT (a faster gather than indexing with the label image)
+_PART_LUT = {ps: t.astype(np.uint8) for ps, t in _PART_SET.items()}
 _ANG = np.linspace(0, 2 * np.pi, 8, endpoint=False)
 #: an upright object's outline points (base and top rings) relative to its base centre
 _OUTLINE = {n: np.vstack([np.column_stack([layout.OBJECT_RADIUS[n] * np.cos(_ANG), layout.OBJECT_RADIUS[n] * np.sin(_ANG), np.full(8, z)])
@@ -108,6 +112,18 @@ def _pct(x: np.ndarray, q: float) -> float:
     return float(x[lo] + (k - lo) * (x[hi] - x[lo]))
 
 
+def _median0(X: np.ndarray) -> np.ndarray:
+    """np.median(X, axis=0) of a (N, k) float array, N >= 1: the middle of each column sorted, or the
+    mean of the two middle ones (their sum halved, as np.mean takes it); np.median itself if any is nan."""
+    srt = np.sort(X, axis=0)
+    n = len(srt)
+    if np.isnan(srt[-1]).any():
+        return np.median(X, axis=0)
+    if n % 2:
+        return srt[n // 2]
+    return (srt[n // 2 - 1] + srt[n // 2]) / 2
+
+
 def _crop(img: np.ndarray, x0: int, y0: int, x1: int, y1: int, size: tuple[int, int]) -> np.ndarray:
     h, w = img.shape[:2]
     pad = [max(0, -y0), max(0, y1 - h), max(0, -x0), max(0, x1 - w)]
@@ -116,18 +132,20 @@ def _crop(img: np.ndarray, x0: int, y0: int, x1: int, y1: int, size: tuple[int, 
         sub = cv2.copyMakeBorder(sub, *pad, cv2.BORDER_CONSTANT, value=0)
     if sub.size == 0:
         return np.zeros(size[::-1], np.float32)
-    return cv2.resize(sub.astype(np.float32), size, interpolation=cv2.INTER_AREA)
+    return cv2.resize(sub.astype(np.float32, copy=False), size, interpolation=cv2.INTER_AREA)
 
 
 def _match(a: Blob, cands: list[Blob]) -> Blob | None:
     """The right-image blob for left-image blob a: same rows, positive disparity, similar area."""
     best, score = None, 1e9
+    au, av = a.centroid.tolist()
     for b in cands:
-        dv = abs(a.centroid[1] - b.centroid[1])
-        du = a.centroid[0] - b.centroid[0]
+        bu, bv = b.centroid.tolist()
+        dv = abs(av - bv)
+        du = au - bu
         if dv > 12 or not (-2 < du < 140):
             continue
-        s = dv + 10 * abs(np.log((a.area + 1) / (b.area + 1)))
+        s = dv + 10 * abs(math.log((a.area + 1) / (b.area + 1)))     # math.log: the same values as np.log
         if s < score:
             best, score = b, s
     return best
@@ -143,7 +161,7 @@ class _Roi:
         x1, y1 = min(W, x + w + 4), min(H, y + h + 4)
         self.img = img[self.y0:y1, self.x0:x1]
         self.lab = table.labels(self.img)
-        m = _PART_SET[parts][self.lab]          # one gather: the label is one of the parts
+        m = cv2.LUT(self.lab, _PART_LUT[parts]).view(bool).reshape(self.lab.shape)   # one gather: the label is one of the parts
         self.mask = m
         m8 = m.view(np.uint8)
         bx, by, bw, bh = cv2.boundingRect(m8)   # the silhouette's extent
@@ -164,11 +182,11 @@ class _Roi:
         self.tilt = 0.0
         if n > 3:   # the silhouette's main axis from its central moments
             a, b, c = mo["mu20"] / n, mo["mu11"] / n, mo["mu02"] / n
-            root = np.sqrt(max(0.0, 0.25 * (a - c) ** 2 + b * b))
+            root = math.sqrt(max(0.0, 0.25 * (a - c) ** 2 + b * b))
             l1, l0 = 0.5 * (a + c) + root, 0.5 * (a + c) - root
             if l1 > 1.5 * l0:   # elongated: the angle of the main axis (b, l1 - a) from the image vertical
                 vx, vy = (b, l1 - a) if abs(b) > 1e-12 else ((1.0, 0.0) if a >= c else (0.0, 1.0))
-                self.tilt = float(np.arccos(min(1.0, abs(vy) / np.hypot(vx, vy))))
+                self.tilt = math.acos(min(1.0, abs(vy) / np.hypot(vx, vy)))   # math.acos: libm's acos, as np.arccos
         self.area = float(n)
         self.h_capped = self.h
         self._axis: tuple[np.ndarray, np.ndarray] | None = None
@@ -192,9 +210,9 @@ class _Roi:
         v, u = self.axis()
         if v.size < AXIS_ROWS:
             return self.tilt
-        dv = v - v.mean()
-        slope = float(dv @ (u - u.mean())) / float(dv @ dv)   # the least-squares line's slope
-        return float(np.arctan(abs(slope)))
+        dv = v - v.sum() / v.size              # v.mean(), u.mean(): the same sums and division
+        slope = float(dv @ (u - u.sum() / u.size)) / float(dv @ dv)   # the least-squares line's slope
+        return math.atan(abs(slope))            # libm's atan, as np.arctan
 
     def axis(self) -> tuple[np.ndarray, np.ndarray]:
         """(rows, mid-columns), absolute pixels, of the rows that show the silhouette's full width: there
@@ -232,8 +250,9 @@ class Detector:
                 L[self.static_mask(cam, L.shape) & (L == _K)] = 0
         det = Detections(labels=lab)
         # the blobs of each part in each camera (a right-image part only where the left has one to pair with)
-        found, views = components_each([[L == _B, (L == _G) | (L == _L), L == _K] for L in lab],
-                                       ("bottle", "glass", "skin"), (2, 2, 6), pairs_only=True)
+        # (glass or liquid: one inRange, 0/255, the labels being consecutive)
+        found, views = components_each([[L == _B, cv2.inRange(L, _G, _L), L == _K] for L in lab],
+                                       ("bottle", "glass", "skin"), (2, 2, 6), pairs_only=True, views_of=(2,))
         blobs = [{"bottle": f[0], "glass": f[1], "skin": (f[2], v[2])} for f, v in zip(found, views)]
         for name in ("bottle", "glass"):
             det.objects[name] = self._object(name, blobs, imgs, cams)
@@ -284,13 +303,17 @@ class Detector:
         r_obj = layout.OBJECT_RADIUS[name]
         on_table = abs(Xb[2]) < ON_TABLE_TOL
         if on_table:
+            # on floats, the operations of: P = on_plane(...)[0]; hdir = P[:2] - C[:2];
+            # P[:2] += r_obj * hdir / np.linalg.norm(hdir); pos = np.mean([P_left, P_right], axis=0)
             pts = []
             for cam, roi in zip(cams, rois):
-                P = on_plane(cam, roi.bottom, 0.0)[0]
-                hdir = P[:2] - cam.C[:2]
-                P[:2] += r_obj * hdir / np.linalg.norm(hdir)
-                pts.append(P)
-            pos = np.mean(pts, axis=0)
+                px, py, pz = on_plane_rows(cam, roi.bottom, 0.0)[0]
+                cx, cy = cam.C[:2].tolist()
+                hx, hy = px - cx, py - cy
+                n = math.sqrt(hx * hx + hy * hy)
+                pts.append((px + r_obj * hx / n, py + r_obj * hy / n, pz))
+            (ax, ay, az), (bx, by, bz) = pts
+            pos = np.array([(ax + bx) / 2, (ay + by) / 2, (az + bz) / 2])
         else:   # lifted: x, y from the axis in both images; the height from the silhouette's centroid
             pos = triangulate(cams[0], cams[1], rois[0].centroid, rois[1].centroid)[0]
             pos[2] -= CENTROID_Z[name]
@@ -304,15 +327,14 @@ class Detector:
             if common.size >= AXIS_ROWS:
                 v = common + 0.5
                 X = triangulate(cams[0], cams[1], np.column_stack([ul[il], v]), np.column_stack([ur[ir], v]))
-                pos[:2] = np.median(X[:, :2], axis=0)
+                pos[:2] = _median0(X[:, :2])
             else:
                 hdir = pos[:2] - 0.5 * (cams[0].C[:2] + cams[1].C[:2])
                 pos[:2] += 0.5 * r_obj * hdir / np.linalg.norm(hdir)
         extent = 9.0
         H, W = imgs[0].shape[:2]
         inside = True
-        for cam, roi, bb in zip(cams, rois, (a, b)):
-            ew, eh = cam.expected_box(pos + _OUTLINE[name])
+        for (ew, eh), roi, bb in zip(expected_boxes(cams, pos + _OUTLINE[name]), rois, (a, b)):
             extent = min(extent, roi.h_capped / max(eh, 1.0), roi.w / max(ew, 1.0))
             x, y, w, h = bb.bbox
             inside &= x > 1 and y > 1 and x + w < W - 1 and y + h < H - 1
@@ -325,7 +347,8 @@ class Detector:
         return det
 
     def _object_features(self, det: ObjectDetection, rois, cams, pos) -> None:
-        depth = float(np.linalg.norm(pos - cams[0].C))
+        dp = pos - cams[0].C
+        depth = math.sqrt(dp.dot(dp))          # np.linalg.norm(pos - C)
         f = cams[0].K[0, 0]
         if det.name == "bottle":
             # the stopper: red pixels touching the bottle's silhouette (any tilt); the band above the
@@ -387,12 +410,13 @@ class Detector:
             x0, y0, x1, y1 = max(0, x - 2), max(0, y - 2), min(L.shape[1], x + w + 2), min(L.shape[0], y + h + 2)
             sub = L[y0:y1, x0:x1]
             skin = cc[y0:y1, x0:x1] == bb.label        # this blob's own pixels (from the one components pass)
-            ys, xs = np.nonzero(skin)
-            P = np.column_stack([xs + x0, ys + y0]).astype(float) * 2 + 0.5
+            # the pixels' centres (x, y) at full resolution: small integers and halves, exact in any order
+            P = np.argwhere(skin)[:, ::-1] * 2.0 + [2 * x0 + 0.5, 2 * y0 + 0.5]
             sleeve = cv2.dilate((sub == _T).view(np.uint8), _DILATE3) > 0
             touch = np.nonzero(skin & sleeve)
             if len(touch[0]) >= 2:
-                root = np.array([touch[1].mean() + x0, touch[0].mean() + y0]) * 2 + 0.5
+                nt = touch[0].size                # the means as np.mean takes them: sum / count
+                root = np.array([touch[1].sum() / nt + x0, touch[0].sum() / nt + y0]) * 2 + 0.5
             else:
                 tm = cv2.moments((L == _T).view(np.uint8), binaryImage=True)
                 root = np.array([tm["m10"] / tm["m00"], tm["m01"] / tm["m00"]]) * 2 if tm["m00"] > 0 else bb.centroid + [0, -40]
@@ -401,7 +425,7 @@ class Detector:
             dp = P - (cam.project(self.arm_root)[0] if self.arm_root is not None else root)
             dist2 = np.einsum("ij,ij->i", dp, dp)       # squared: the same 75th-percentile selection as distances
             far = P[dist2 >= _pct(dist2, 75)]
-            end = far.mean(axis=0)
+            end = far.sum(axis=0) / len(far)           # far.mean(axis=0)
             ends.append(end)
             roots.append(root)
             if not spread:   # the hand's own outline (left camera): spread along and across the arm, in px
@@ -409,10 +433,13 @@ class Detector:
                 ax = ax / max(1e-6, float(np.hypot(ax[0], ax[1])))
                 q = far - end
                 pr = q @ np.array([[ax[0], -ax[1]], [ax[1], ax[0]]])
-                sd = pr.std(axis=0)
+                # pr.std(axis=0), step by step as np.std takes it
+                dev = pr - pr.sum(axis=0, keepdims=True) / len(pr)
+                sd = np.sqrt((dev * dev).sum(axis=0) / len(pr))
                 spread = [float(sd[0]), float(sd[1]), float(len(far))]
         Xd, Xr = triangulate(cams[0], cams[1], np.array([ends[0], roots[0]]), np.array([ends[1], roots[1]]))
-        depth = float(np.linalg.norm(Xd - cams[0].C))
+        dd = Xd - cams[0].C
+        depth = math.sqrt(dd.dot(dd))             # np.linalg.norm(Xd - C)
         half = int(round(cams[0].K[0, 0] * HAND_REACH / depth))
         u, v = (int(round(c)) for c in ends[0])
         skin_full = self.table.labels(imgs[0][max(0, v - half):v + half, max(0, u - half):u + half]) == _K
@@ -430,13 +457,14 @@ class Detector:
         (bottle, glass) the horizontal distance, the height over its (upright) top, its base height
         and tilt, and the bottle's stopper in view."""
         d = Xd - Xr
-        d = d / max(1e-6, float(np.linalg.norm(d)))
+        d = d / max(1e-6, math.sqrt(d.dot(d)))     # np.linalg.norm(d)
         rel = []
         for o in (det.objects["bottle"], det.objects["glass"]):
             if o.position is None:
                 rel += [0.5, 0.0, 0.0, 0.0]
                 continue
-            rel += [float(np.linalg.norm(Xd[:2] - o.position[:2])), float(Xd[2] - o.position[2] - HEIGHT[o.name]),
+            dxy = Xd[:2] - o.position[:2]
+            rel += [math.sqrt(dxy.dot(dxy)), float(Xd[2] - o.position[2] - HEIGHT[o.name]),
                     float(o.position[2]), float(o.tilt)]
         red = float(max(det.objects["bottle"].stopper))
         return np.array([*Xd, *d, *Xr, area, *shape, *rel, red], np.float32)

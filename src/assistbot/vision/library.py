@@ -33,6 +33,14 @@ _MOSAICS: dict[int, tuple] = {}
 
 def _mosaic(protos: list[list[np.ndarray]]) -> tuple[np.ndarray, np.ndarray, int]:
     """All prototypes side by side, each with a `_SHIFT`-px zero border: (image, class per prototype, stride)."""
+    img, cls, stride, _, _ = _mosaic_entry(protos)
+    return img, cls, stride
+
+
+def _mosaic_entry(protos: list[list[np.ndarray]]) -> tuple:
+    """The mosaic (image, class per prototype, stride), the prototypes, and the gather indices of
+    the score map: the columns of each prototype's shifts (prototype-major) and, per class, its
+    prototypes' entries in the per-prototype maxima and the extra -1 entry at the end (the floor)."""
     key = id(protos)
     if key not in _MOSAICS:
         flat = [(c, p) for c, plist in enumerate(protos) for p in plist]
@@ -41,24 +49,40 @@ def _mosaic(protos: list[list[np.ndarray]]) -> tuple[np.ndarray, np.ndarray, int
         img = np.zeros((h + 2 * _SHIFT, len(flat) * stride), np.float32)
         for j, (_, p) in enumerate(flat):
             img[_SHIFT:_SHIFT + h, j * stride + _SHIFT:j * stride + _SHIFT + w] = p
-        _MOSAICS[key] = (img, np.array([c for c, _ in flat]), stride, protos)   # protos kept: the id stays theirs
-    img, cls, stride, _ = _MOSAICS[key]
-    return img, cls, stride
+        n = len(flat)
+        cols = ((np.arange(n) * stride)[:, None] + np.arange(2 * _SHIFT + 1)[None]).ravel()
+        cls = np.array([c for c, _ in flat])
+        width = max(len(pl) for pl in protos) + 1     # + the -1 floor, as the scores start at -1
+        group = np.full((len(protos), width), n)
+        for c in range(len(protos)):
+            idx = np.flatnonzero(cls == c)
+            group[c, :idx.size] = idx
+        # protos kept: the id stays theirs
+        _MOSAICS[key] = (img, cls, stride, protos, (cols, group))
+    return _MOSAICS[key]
 
 
 def template_scores(crop: np.ndarray | None, protos: list[list[np.ndarray]]) -> np.ndarray:
     """Best normalised match (cv2.matchTemplate, TM_CCOEFF_NORMED, +-3 px shifts) of crop against each
     class's prototypes: one score per class, in ONE matchTemplate call (the crop slides over a
     mosaic of all prototypes).  Crops are normalised to the template size by the detector (their
-    size follows the object's distance), so one scale suffices."""
+    size follows the object's distance), so one scale suffices.  A non-finite score counts as -1."""
     if crop is None or not any(protos):
         return np.zeros(0, np.float32)
-    img, cls, stride = _mosaic(protos)
-    r = cv2.matchTemplate(img, crop.astype(np.float32), cv2.TM_CCOEFF_NORMED)
-    r = np.nan_to_num(r, nan=-1.0, posinf=-1.0, neginf=-1.0)
+    img, cls, stride, _, (cols, group) = _mosaic_entry(protos)
+    r = cv2.matchTemplate(img, crop.astype(np.float32, copy=False), cv2.TM_CCOEFF_NORMED)
     n = len(cls)
-    r = np.pad(r, ((0, 0), (0, n * stride - r.shape[1])), constant_values=-1.0)
-    per = r.reshape(r.shape[0], n, stride)[:, :, :2 * _SHIFT + 1].max(axis=(0, 2))
+    if r.shape[1] > cols[-1]:
+        # only the shifts' columns, gathered at once (the usual case: a crop of the templates' size)
+        sub = r[:, cols]
+        if np.isfinite(sub).all():
+            per = np.empty(n + 1, np.float32)
+            per[n] = -1.0
+            per[:n] = sub.reshape(r.shape[0], n, 2 * _SHIFT + 1).max(axis=(0, 2))
+            return per[group].max(axis=1)
+    r = np.nan_to_num(r, nan=-1.0, posinf=-1.0, neginf=-1.0)
+    r = np.pad(r, ((0, 0), (0, max(0, n * stride - r.shape[1]))), constant_values=-1.0)
+    per = r[:, :n * stride].reshape(r.shape[0], n, stride)[:, :, :2 * _SHIFT + 1].max(axis=(0, 2))
     out = np.full(len(protos), -1.0, np.float32)
     np.maximum.at(out, cls, per)
     return out
@@ -106,8 +130,9 @@ class Classifier:
             h = np.tanh(np.einsum("f,mfh->mh", z, m["W1"]) + m["b1"])
             logit = np.einsum("mh,mhc->mc", h, m["W2"]) + m["b2"]
             pr = np.exp(logit - logit.max(axis=1, keepdims=True))
-            pr = (pr / pr.sum(axis=1, keepdims=True)).mean(axis=0)
-            c = int(np.argmax(pr))
+            pr = pr / pr.sum(axis=1, keepdims=True)
+            pr = pr.sum(axis=0) / len(pr)      # .mean(axis=0): the same sum and division
+            c = int(pr.argmax())
             return self.classes[c], float(pr[c]), f[:len(f) - len(extra)]
         d = np.sum((self.X - z) ** 2, axis=1)
         idx = np.argpartition(d, min(K_NEIGHBOURS, len(d) - 1))[:K_NEIGHBOURS]

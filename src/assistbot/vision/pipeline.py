@@ -15,6 +15,7 @@ with its state from the pixels when it can be seen, else ``seen=False``.
 
 from __future__ import annotations
 
+import math
 import time
 from dataclasses import dataclass
 
@@ -47,6 +48,11 @@ def _in_robot_hand(d, tcp) -> bool:
         return False
     above = d.top - np.asarray(tcp, float)
     return bool(np.hypot(above[0], above[1]) < HELD_TOP_XY and HELD_TOP_Z[0] < above[2] < HELD_TOP_Z[1])
+
+
+def _norm(v: np.ndarray) -> float:
+    """np.linalg.norm of a vector, as it computes it (sqrt of the vector's dot with itself)."""
+    return math.sqrt(v.dot(v))
 
 
 def _unseen(name: str) -> ObjectPercept:
@@ -113,10 +119,10 @@ class Vision:
         if name != "bottle":
             state, conf, _ = self.classifiers[name].classify(d.crop, d.feat)
             return state, conf
-        hand_at_top = bool(hand.visible and np.linalg.norm(hand.position - (d.position + [0, 0, 0.19])) < HAND_AT_TOP)
+        hand_at_top = bool(hand.visible and _norm(hand.position - (d.position + [0, 0, 0.19])) < HAND_AT_TOP)
         # lifted in the person's hand: a grip from above covers the stopper wherever vision puts the hand
         hand_at_top |= bool(hand.visible and not d.on_table
-                            and np.linalg.norm(hand.position - (d.position + [0, 0, CENTROID_Z["bottle"]])) < HELD_DIST)
+                            and _norm(hand.position - (d.position + [0, 0, CENTROID_Z["bottle"]])) < HELD_DIST)
         both = min(d.stopper) >= STOPPER_SEEN
         one = max(d.stopper) >= STOPPER_SEEN
         if both:
@@ -147,8 +153,8 @@ class Vision:
             if posture != "remove_stopper":
                 hp.object_in_hand = target
         elif seen_objs:
-            near = min(seen_objs, key=lambda n: np.linalg.norm(seen_objs[n][:2] - X[:2]))
-            if posture in ("grasp_ag", "grasp_sg") and np.linalg.norm(seen_objs[near][:2] - X[:2]) < IN_HAND_XY + 0.05:
+            near = min(seen_objs, key=lambda n: _norm(seen_objs[n][:2] - X[:2]))
+            if posture in ("grasp_ag", "grasp_sg") and _norm(seen_objs[near][:2] - X[:2]) < IN_HAND_XY + 0.05:
                 hp.object_in_hand = near
             if posture in ("reach", "grasp_ag", "grasp_sg"):
                 hp.directed_at = near
