@@ -57,13 +57,11 @@ def default_config() -> dict[str, Any]:
         # OL: a trace of the motor acts seen, decaying over ~tau once the act is no longer seen
         "OL": _field(0.25, -3.0, 0.8, 0.0, input_sigma=2.0),
         # OML: memory; percept inputs are wide so that contrary evidence covers the gaps between items too.
-        # The kernel is narrow (sigma 1.0) so that a lone peak stays on its item: a peak's width is
-        # about (A sigma sqrt(pi/2) + h) / w_inhib (Amari), 10 positions here; with sigma 1.5 (22) a
-        # peak left alone, the other object's memory erased by conflicting views (the glass turned in
-        # the gripper, seen inverted, then empty), lit its neighbour item 10 positions off (an open
-        # bottle in the RWS became one in the HWS too).  A stronger global inhibition instead keeps
-        # it narrow but lets a new peak of one object erase the other's unseen memory.
-        "OML": _field(0.1, -3.0, 4.0, 0.2, sigma=1.0, input_sigma=4.0),
+        # Global inhibition sets a lone peak's width (Amari: ~(A sigma sqrt(pi/2) + h) / w_inhib = 13
+        # positions at 0.35): at 0.2 a peak left alone (the other object's memory erased by conflicting
+        # views) grew to 22 and lit its neighbour item, 10 positions off (an open bottle in the RWS
+        # became one in the HWS too)
+        "OML": _field(0.1, -3.0, 4.0, 0.35, input_sigma=4.0),
         # CSGL: driven by evidence and task drive, several peaks (past, future) or one (present)
         "CSGL_past": _field(0.1, -3.0, 0.8, 0.0),
         "CSGL_present": _field(0.1, -3.0, 0.8, 0.6),
