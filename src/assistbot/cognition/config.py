@@ -56,12 +56,8 @@ def default_config() -> dict[str, Any]:
         # memory fields: a peak once formed stays without input
         # OL: a trace of the motor acts seen, decaying over ~tau once the act is no longer seen
         "OL": _field(0.25, -3.0, 0.8, 0.0, input_sigma=2.0),
-        # OML: memory; percept inputs are wide so that contrary evidence covers the gaps between items too.
-        # Global inhibition sets a lone peak's width (Amari: ~(A sigma sqrt(pi/2) + h) / w_inhib = 13
-        # positions at 0.35): at 0.2 a peak left alone (the other object's memory erased by conflicting
-        # views) grew to 22 and lit its neighbour item, 10 positions off (an open bottle in the RWS
-        # became one in the HWS too)
-        "OML": _field(0.1, -3.0, 4.0, 0.35, input_sigma=4.0),
+        # OML: memory; percept inputs are wide so that contrary evidence covers the gaps between items too
+        "OML": _field(0.1, -3.0, 4.0, 0.2, input_sigma=4.0),
         # CSGL: driven by evidence and task drive, several peaks (past, future) or one (present)
         "CSGL_past": _field(0.1, -3.0, 0.8, 0.0),
         "CSGL_present": _field(0.1, -3.0, 0.8, 0.6),
