@@ -268,13 +268,10 @@ def test_proprioception_puts_the_held_object_in_rws():
     assert set(cog.peaks("OML")) == {"bottle_closed_RWS", "glass_inverted_RWS"}
 
 
-@pytest.mark.xfail(strict=True, reason="known defect, kept open: a lone OML peak is ~22 positions wide (A 4, sigma 1.5, "
-                   "w_inhib 0.2: Amari width (A sigma sqrt(pi/2) + h) / w_inhib) and lights its neighbour item 10 positions "
-                   "off; a stronger inhibition or a narrower kernel fixes this case but broke closed-loop scenarios")
 def test_a_lone_memory_peak_stays_on_its_item():
     """The bottle seen open in the RWS, then hidden, while the glass's views conflict (inverted, empty:
-    turned in the gripper) and erase its memory: the bottle should stay remembered where it was, and
-    nowhere else.  Today its lone peak widens onto bottle_open_HWS after ~4 s."""
+    turned in the gripper) and erase its memory: the bottle stays remembered where it was, and
+    nowhere else (with OML's items 10 positions apart, its lone peak widened onto bottle_open_HWS)."""
     from assistbot.cognition.percept import HandPercept, ObjectPercept, Percept, RobotPercept
     cog = Cognition()
     for i in range(1, 201):
