@@ -56,12 +56,13 @@ def default_config() -> dict[str, Any]:
         # memory fields: a peak once formed stays without input
         # OL: a trace of the motor acts seen, decaying over ~tau once the act is no longer seen
         "OL": _field(0.25, -3.0, 0.8, 0.0, input_sigma=2.0),
-        # OML: memory; percept inputs are wide so that contrary evidence covers the gaps between items too.
-        # Its items are 25 positions apart (the others' 10): a peak left alone (the other object's memory
-        # erased by conflicting views: the glass turned in the gripper, seen inverted, then empty) is
-        # ~22 wide (Amari: (A sigma sqrt(pi/2) + h) / w_inhib) and at 10 apart lit its neighbour item
-        # (an open bottle in the RWS became one in the HWS too).  Couplings read items at their centres,
-        # so the wider spacing leaves the peaks and what they drive as they were
+        # OML: memory; percept inputs are wide (sigma 4), so that evidence against an item reaches the
+        # flanks of its peak, not just its centre.  Its items are 25 positions apart (its own spacing:
+        # the global one does not apply to it): a peak left alone (the other object's memory erased by
+        # conflicting views: the glass turned in the gripper, seen inverted, then empty) is ~22 wide
+        # (Amari: (A sigma sqrt(pi/2) + h) / w_inhib) and at 10 apart lit its neighbour item (an open
+        # bottle in the RWS became one in the HWS too).  Couplings read items at their centres, so
+        # the wider spacing leaves the peaks and what they drive as they were
         "OML": {**_field(0.1, -3.0, 4.0, 0.2, input_sigma=4.0), "spacing": 25},
         # CSGL: driven by evidence and task drive, several peaks (past, future) or one (present)
         "CSGL_past": _field(0.1, -3.0, 0.8, 0.0),
