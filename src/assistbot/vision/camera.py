@@ -106,16 +106,6 @@ class CameraModel:
             return np.array(_unit_rows(d))
         return d / np.sqrt((d * d).sum(axis=1, keepdims=True))
 
-    def _ray_rows(self, uv) -> tuple[list, np.ndarray]:
-        """`ray` of a few pixels, as rows of floats and as the array."""
-        Q2, q = self._Q_parts
-        d = np.reshape(np.asarray(uv, float), (-1, 2)) @ Q2 + q
-        if len(d) <= _FEW:
-            rows = _unit_rows(d)
-            return rows, np.array(rows)
-        d = d / np.sqrt((d * d).sum(axis=1, keepdims=True))
-        return d.tolist(), d
-
     def expected_box(self, X: np.ndarray) -> tuple[float, float]:
         """(width, height) in pixels of the image of the table points X (N, 3); (1, 1) if any is behind the camera."""
         A, t = self._P_parts
@@ -152,25 +142,14 @@ def _pair(left: CameraModel, right: CameraModel) -> tuple:
     """Constants of a camera pair for `triangulate` and `expected_boxes`, kept for the last pair (each
     frame's cameras are new objects): the ray matrices stacked ((2, 2, 3) and (2, 1, 3): the rows of
     each camera's `_Q`), the baseline C_l - C_r, C_l + C_r as floats, and both cameras' P[:, :3].T side
-    by side (3, 6) with their P[:, 3] (6,).  With one K (the head's cameras) they come from stacked
-    products of both cameras at once: per slice the same BLAS products as each camera's own `_Q` and
-    `P` (identical on all benchmark cameras); else from the cameras' own."""
+    by side (3, 6) with their P[:, 3] (6,), all from the cameras' own `_Q` and `P`."""
     ent = _PAIR[0]
     if ent[0] is left and ent[1] is right:
         return ent[2]
-    if np.array_equal(left.K, right.K):
-        K = left.K
-        Rs = np.stack([left.R, right.R])
-        Qs = _inv_K(K).T @ Rs                                          # inv(K).T @ R, per camera
-        Ps = K @ np.concatenate([Rs, (-Rs) @ np.stack([left.C, right.C])[:, :, None]], axis=2)   # P per camera
-        QS, qS = np.ascontiguousarray(Qs[:, :2]), Qs[:, 2:]
-        A2 = np.ascontiguousarray(Ps[:, :, :3].transpose(2, 0, 1)).reshape(3, 6)
-        t2 = Ps[:, :, 3].reshape(6)
-    else:
-        (Ql, ql), (Qr, qr) = left._Q_parts, right._Q_parts
-        (Al, tl), (Ar, tr) = left._P_parts, right._P_parts
-        QS, qS = np.stack([Ql, Qr]), np.stack([ql, qr])[:, None, :]
-        A2, t2 = np.hstack([Al, Ar]), np.concatenate([tl, tr])
+    (Ql, ql), (Qr, qr) = left._Q_parts, right._Q_parts
+    (Al, tl), (Ar, tr) = left._P_parts, right._P_parts
+    QS, qS = np.stack([Ql, Qr]), np.stack([ql, qr])[:, None, :]
+    A2, t2 = np.hstack([Al, Ar]), np.concatenate([tl, tr])
     consts = (QS, qS, left.C - right.C, (left.C + right.C).tolist(), A2, t2)
     _PAIR[0] = (left, right, consts)
     return consts
@@ -211,29 +190,17 @@ def triangulate(left: CameraModel, right: CameraModel, uv_left, uv_right) -> np.
 
 def on_plane(cam: CameraModel, uv, z: float) -> np.ndarray:
     """(N, 3) points where the rays through pixels uv meet the horizontal plane at table height z."""
-    rows, d = cam._ray_rows(uv)
-    if len(rows) <= _FEW:
-        return np.array(_on_plane_rows(cam, rows, z))
+    d = cam.ray(uv)
+    if len(d) <= _FEW:   # a few points: on floats (numpy's per-call overhead dominates)
+        C = cam.C.tolist()
+        h = float(z - cam.C[2])
+        out = []
+        for x, y, w in d.tolist():
+            s = h / w if abs(w) > 1e-9 else math.nan
+            out.append([C[0] + s * x, C[1] + s * y, C[2] + s * w])
+        return np.array(out)
     s = (z - cam.C[2]) / np.where(np.abs(d[:, 2]) > 1e-9, d[:, 2], np.nan)
     return cam.C + s[:, None] * d
-
-
-def on_plane_rows(cam: CameraModel, uv, z: float) -> list[list[float]]:
-    """`on_plane` of a few pixels, as rows of floats."""
-    rows, d = cam._ray_rows(uv)
-    if len(rows) <= _FEW:
-        return _on_plane_rows(cam, rows, z)
-    return on_plane(cam, uv, z).tolist()
-
-
-def _on_plane_rows(cam: CameraModel, rows: list, z: float) -> list[list[float]]:
-    C = cam.C.tolist()
-    h = float(z - cam.C[2])
-    out = []
-    for x, y, w in rows:
-        s = h / w if abs(w) > 1e-9 else math.nan
-        out.append([C[0] + s * x, C[1] + s * y, C[2] + s * w])
-    return out
 
 
 def expected_boxes(cams: tuple[CameraModel, CameraModel], X: np.ndarray) -> list[tuple[float, float]]:

@@ -31,7 +31,7 @@ import numpy as np
 
 cv2.setNumThreads(1)   # per-frame work on small images: OpenCV's thread pool costs more than it saves
 
-from assistbot.vision.camera import CameraModel, expected_boxes, on_plane_rows, triangulate
+from assistbot.vision.camera import CameraModel, expected_boxes, on_plane, triangulate
 from assistbot.vision.segment import LABEL, Blob, ColourTable, components_each
 from assistbot.world import layout
 
@@ -54,10 +54,8 @@ _B, _S, _G, _L, _K, _T = (LABEL[p] for p in ("bottle", "stopper", "glass", "liqu
 assert _L == _G + 1      # the glass mask is one inRange over both labels
 _DILATE = np.ones((5, 5), np.uint8)
 _DILATE3 = np.ones((3, 3), np.uint8)
-#: label -> "is one of these parts", per part set used for a silhouette
-_PART_SET = {ps: np.isin(np.arange(256), ps) for ps in ((_B,), (_G, _L))}
-#: the same as 0/1 look-up tables for cv2.LUT (a faster gather than indexing with the label image)
-_PART_LUT = {ps: t.astype(np.uint8) for ps, t in _PART_SET.items()}
+#: label -> 1 if it is one of these parts, per part set used for a silhouette (a cv2.LUT table)
+_PART_LUT = {ps: np.isin(np.arange(256), ps).astype(np.uint8) for ps in ((_B,), (_G, _L))}
 _ANG = np.linspace(0, 2 * np.pi, 8, endpoint=False)
 #: an upright object's outline points (base and top rings) relative to its base centre
 _OUTLINE = {n: np.vstack([np.column_stack([layout.OBJECT_RADIUS[n] * np.cos(_ANG), layout.OBJECT_RADIUS[n] * np.sin(_ANG), np.full(8, z)])
@@ -287,7 +285,7 @@ class Detector:
             # P[:2] += r_obj * hdir / np.linalg.norm(hdir); pos = np.mean([P_left, P_right], axis=0)
             pts = []
             for cam, roi in zip(cams, rois):
-                px, py, pz = on_plane_rows(cam, roi.bottom, 0.0)[0]
+                px, py, pz = on_plane(cam, roi.bottom, 0.0)[0].tolist()
                 cx, cy = cam.C[:2].tolist()
                 hx, hy = px - cx, py - cy
                 n = math.sqrt(hx * hx + hy * hy)

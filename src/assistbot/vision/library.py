@@ -31,12 +31,6 @@ _SHIFT = 3
 _MOSAICS: dict[int, tuple] = {}
 
 
-def _mosaic(protos: list[list[np.ndarray]]) -> tuple[np.ndarray, np.ndarray, int]:
-    """All prototypes side by side, each with a `_SHIFT`-px zero border: (image, class per prototype, stride)."""
-    img, cls, stride, _, _ = _mosaic_entry(protos)
-    return img, cls, stride
-
-
 def _mosaic_entry(protos: list[list[np.ndarray]]) -> tuple:
     """The mosaic (image, class per prototype, stride), the prototypes, and the gather indices of
     the score map: the columns of each prototype's shifts (prototype-major) and, per class, its

@@ -81,20 +81,10 @@ class ColourTable:
 
 
 def components(mask: np.ndarray, part: str, keep: int = 4, scale: int = 2) -> tuple[list[Blob], np.ndarray]:
-    """The `keep` largest connected components of a (half-resolution) mask, in full-resolution pixels."""
-    n, lab, stats, cents = cv2.connectedComponentsWithStats(mask.view(np.uint8), connectivity=8)
-    if n <= 1:
-        return [], lab
-    areas = stats[1:, cv2.CC_STAT_AREA]
-    order = np.argsort(-areas)[:keep]
-    res = []
-    for k in order:
-        if areas[k] < MIN_AREA[part]:
-            break
-        i = k + 1
-        x, y, w, h = (int(v) * scale for v in stats[i, :4])
-        res.append(Blob(part, float(areas[k]) * scale * scale, (cents[i] + 0.5) * scale - 0.5, (x, y, w, h), int(i)))
-    return res, lab
+    """The `keep` largest connected components of a (half-resolution) mask, in full-resolution pixels,
+    and its label image: `components_each` of one mask."""
+    found, views = components_each([[mask]], (part,), (keep,), scale)
+    return found[0][0], views[0][0]
 
 
 def components_each(masks: list[list[np.ndarray]], parts: tuple[str, ...], keep: tuple[int, ...], scale: int = 2,
