@@ -14,11 +14,11 @@ from assistbot.vision.scenes import SceneSampler, pose
 from assistbot.world import PAPER_ARRANGEMENTS, build_world
 
 # Accuracy goals of issue 8 and the margin this test allows on its small set (60 frames, where one
-# frame is ~1.7%).  Measured on this set: state 98.7%, posture 86.7%, median 0.9 cm, p95 2.4 cm.
-# Hand posture still falls short of its goal (87-89% on the 500-frame benchmark, depending on the
-# network's fit): its margin is the wider one.
+# frame is ~1.7%).  Measured on this set: state 97.4%, posture 94.8%, median 0.8 cm, p95 1.9 cm.
+# Hand posture still falls short of its goal (93.9% on the 500-frame benchmark): its margin is the
+# wider one.
 GOAL_OBJECT, GOAL_POSTURE, GOAL_MEDIAN_CM, GOAL_P95_CM = 0.98, 0.95, 2.0, 5.0
-MARGIN_OBJECT, MARGIN_POSTURE, MARGIN_MEDIAN_CM, MARGIN_P95_CM = 0.04, 0.15, 0.0, 0.0
+MARGIN_OBJECT, MARGIN_POSTURE, MARGIN_MEDIAN_CM, MARGIN_P95_CM = 0.04, 0.05, 0.0, 0.0
 
 @pytest.fixture(scope="module")
 def world():
@@ -88,6 +88,29 @@ def test_templates_command_is_deterministic(tmp_path):
     assert names == sorted(p.name for p in b.iterdir()) and "index.json" in names
     for n in names:
         assert (a / n).read_bytes() == (b / n).read_bytes(), n
+
+
+def test_working_hand_touching_the_resting_arm_in_the_image_is_found_not_the_resting_arm(world):
+    """Scenes where the working hand, grasping an object, touches the resting left arm in the image:
+    one skin blob unless the calibrated static skin is taken out.  The hand is found where it is;
+    without the static skin cells and the arm's root, the same frames put it at the resting arm."""
+    from assistbot.vision.detect import Detector
+    from assistbot.vision.library import load_calibration
+    cal = load_calibration()
+    bare = {k: v for k, v in cal.items() if k not in ("static_skin_cells", "arm_root")}
+    sampler = SceneSampler(1, "test")
+    specs = [sampler.sample(("reach", "pointing", "grasp_ag", "grasp_sg")[i % 4]) for i in range(23)]
+    with StereoCapture(world.model) as cap:
+        for spec in (specs[18], specs[22]):
+            assert spec.posture == "grasp_ag"
+            lab = pose(world, spec)
+            f = cap.grab(world.data)
+            truth = np.array(lab.hand_position)
+            found = Detector(cal)(f.left, f.right, f.cams).hand
+            assert found.visible and np.linalg.norm(found.position - truth) < 0.06
+            merged = Detector(bare)(f.left, f.right, f.cams).hand
+            assert not merged.visible or np.linalg.norm(merged.position - truth) > 0.2
+    world.reset()
 
 
 def test_seeded_labelled_set_meets_goals_minus_margin():

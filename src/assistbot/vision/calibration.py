@@ -3,9 +3,13 @@
 `calibrate(seed)` renders scenes from the "calibrate" seed stream with both head cameras,
 takes the pixels of each part from the renderer's segmentation (a calibration target: the
 one place where labels touch pixels) and sets each part's HSV range from robust percentiles.
-It also learns where static skin shows (the partner's resting left hand and face: blobs that
-are not the working hand), so that the working hand can be told apart.  The result is a
-small JSON file (`assets/templates/calibration.json`) that `assistbot calibrate` writes.
+It also learns where static skin is (the partner's resting left arm and face: skin that is
+never the working hand), so that the working hand can be told apart: as blob centres, and as a
+cloud of 1 cm cells on the static skin's surface, found from the renderer's depth (the other
+calibration target) as the skin cells occupied in most scenes, which the working arm, posed
+anew in each scene, is not.  And where the working arm is rooted (its shoulder, which the
+seated person does not move): the hand is the part of a skin blob farthest from it.  The result is a small JSON file (`assets/templates/calibration.json`)
+that `assistbot calibrate` writes.
 """
 
 from __future__ import annotations
@@ -13,6 +17,7 @@ from __future__ import annotations
 import cv2
 import numpy as np
 
+from assistbot.world.layout import TABLE_Z
 from assistbot.world.render import SEGMENT_LABELS
 
 _SEG = {v: k for k, v in SEGMENT_LABELS.items()}
@@ -50,11 +55,16 @@ def calibrate(seed: int = 0, n_scenes: int = 18, progress=None) -> dict:
     samples: dict[str, list[np.ndarray]] = {p: [] for p in ("bottle", "stopper", "glass", "liquid", "skin", "shirt")}
     full_glass: list[np.ndarray] = []
     frames = []
+    cells: list[set] = []
+    roots: list[np.ndarray] = []
+    shoulder = world.model.body("human_r_upper_arm").id
     with StereoCapture(world.model) as cap:
         for i in range(n_scenes):
             lab = pose(world, sampler.sample(POSTURES[i % len(POSTURES)]))
             f = cap.grab(world.data)
             segs = cap.segmentation(world.data)
+            cells.append(_skin_cells(f.cams, segs, cap.depth(world.data)))
+            roots.append(world.data.xpos[shoulder] - [0.0, 0.0, TABLE_Z])
             for img, seg in zip((f.left, f.right), segs):
                 hsv = cv2.cvtColor(img, cv2.COLOR_RGB2HSV)
                 for part in samples:
@@ -82,7 +92,32 @@ def calibrate(seed: int = 0, n_scenes: int = 18, progress=None) -> dict:
     ranges["glass"] = [[a, b, *r[2:]] for (a, b), r in zip(_circ_range(g.astype(int), 97, 3), ranges["glass"])]
     static = _static_skin(frames, ranges)
     return {"version": 1, "seed": seed, "scenes": n_scenes, "hsv": ranges, "static_skin": static,
-            "pixels": {k: int(len(v)) for k, v in pix.items()}}
+            "static_skin_cells": _static_cells(cells), "arm_root": [round(float(v), 4) for v in np.median(roots, axis=0)], "pixels": {k: int(len(v)) for k, v in pix.items()}}
+
+
+STATIC_CELL = 0.01          # m: the static skin cloud's cell size
+STATIC_SHARE = 0.3          # share of the scenes a static cell is occupied in (the working arm's cells: far fewer)
+
+
+def _skin_cells(cams, segs, depths) -> set:
+    """The 1 cm cells (integer keys) that skin pixels of either camera fall in, from the rendered depth."""
+    keys = set()
+    for cam, seg, z in zip(cams, segs, depths):
+        v, u = np.nonzero(seg == _SEG["skin"])
+        d = cam.ray(np.column_stack([u + 0.5, v + 0.5]))
+        X = cam.C + d * (z[v, u] / (d @ cam.R[2]))[:, None]     # depth is along the optical axis
+        keys.update(map(tuple, np.floor(X / STATIC_CELL).astype(int).tolist()))
+    return keys
+
+
+def _static_cells(cells: list[set]) -> list[list[float]]:
+    """Centres (table frame, m) of the cells occupied in at least `STATIC_SHARE` of the scenes."""
+    count: dict[tuple, int] = {}
+    for keys in cells:
+        for k in keys:
+            count[k] = count.get(k, 0) + 1
+    need = STATIC_SHARE * len(cells)
+    return [[round((c + 0.5) * STATIC_CELL, 3) for c in k] for k in sorted(count) if count[k] >= need]
 
 
 def _static_skin(frames, ranges) -> list[list[float]]:

@@ -139,6 +139,12 @@ class StereoCapture:
             raise RuntimeError("StereoCapture.segmentation renders on the calling thread: use threaded=False")
         return self.renderer.segmentation(data, CAMERAS[0]), self.renderer.segmentation(data, CAMERAS[1])
 
+    def depth(self, data: mujoco.MjData) -> tuple[np.ndarray, np.ndarray]:
+        """Rendered depth (m along each camera's optical axis) of both cameras: for calibration only, never inference."""
+        if self._thread is not None:
+            raise RuntimeError("StereoCapture.depth renders on the calling thread: use threaded=False")
+        return self.renderer.depth(data, CAMERAS[0]), self.renderer.depth(data, CAMERAS[1])
+
     def close(self) -> None:
         if self._thread is not None:
             self._thread.close()

@@ -15,10 +15,13 @@ coordinates (m): an object's position is the centre of the base it stands on.
   its silhouette's height and width at least `MIN_EXTENT` of what an upright object at that place
   projects to (`MIN_EXTENT_HELD` for one lifted in a hand, which always covers part of it).  A
   half-hidden object is reported unseen, not misplaced.
-* The working hand: skin blobs, less the static ones (the resting left hand, the face) that the
-  calibration located.  The arm's root is where the skin meets the sleeve (the shirt blob: its
-  colour is distinct), or, with no sleeve in view, the shirt's centroid; the hand is the part of
-  the skin blob farthest from that root.
+* The working hand: skin blobs, less the static skin (the resting left arm, the face) that the
+  calibration located.  Its cloud of cells, projected into each image, takes the static skin's
+  pixels out of the skin label before the blobs are found, so that a working hand touching the
+  resting arm in the image is not merged with it; blobs centred on a static spot are skipped.
+  The hand is the part of the skin blob farthest from the working arm's calibrated shoulder; the
+  arm's root (a feature) is where the skin meets the sleeve (the shirt blob: its colour is
+  distinct), or, with no sleeve in view, the shirt's centroid.
 """
 
 from __future__ import annotations
@@ -49,6 +52,7 @@ CROP = {"glass": (16, 20), "hand": (24, 24)}   # template sizes (w, h)
 ON_TABLE_TOL = 0.03
 FACE_Z = 0.40              # m above the table: skin higher than this is the face, not the working hand
 STATIC_SKIN_R = 0.08       # m: skin this close to a calibrated static spot is not the working hand
+STATIC_MARGIN = 2          # half-resolution px (~1-2 cm at the table) around the static cells' projections
 HAND_REACH = 0.10          # m: hand crop half-size
 _B, _S, _G, _L, _K, _T = (LABEL[p] for p in ("bottle", "stopper", "glass", "liquid", "skin", "shirt"))
 assert _L == _G + 1      # the glass mask is one inRange over both labels
@@ -232,10 +236,16 @@ class Detector:
     def __init__(self, calibration: dict) -> None:
         self.table = ColourTable(calibration["hsv"])
         self.static_skin = np.array(calibration.get("static_skin", []), float).reshape(-1, 3)
+        self.static_cells = np.array(calibration.get("static_skin_cells", []), float).reshape(-1, 3)
+        self.arm_root = np.array(calibration["arm_root"], float) if "arm_root" in calibration else None
+        self._margin = cv2.getStructuringElement(cv2.MORPH_ELLIPSE, (2 * STATIC_MARGIN + 1,) * 2)
 
     def __call__(self, left: np.ndarray, right: np.ndarray, cams: tuple[CameraModel, CameraModel]) -> Detections:
         imgs = (left, right)
         lab = tuple(self.table.labels(im, 2) for im in imgs)
+        if len(self.static_cells):
+            for L, cam in zip(lab, cams):
+                L[self.static_mask(cam, L.shape) & (L == _K)] = 0
         det = Detections(labels=lab)
         # the blobs of each part in each camera (a right-image part only where the left has one to pair with)
         # (glass or liquid: one inRange, 0/255, the labels being consecutive)
@@ -248,6 +258,16 @@ class Detector:
         for o in det.objects.values():
             self._held(o, det.hand)
         return det
+
+    def static_mask(self, cam: CameraModel, shape: tuple[int, int]) -> np.ndarray:
+        """Where the static skin cells show in a half-resolution image of this camera (bool)."""
+        uv = cam.project(self.static_cells) * 0.5
+        ok = np.isfinite(uv).all(axis=1)
+        u, v = uv[ok, 0].astype(int), uv[ok, 1].astype(int)
+        ok = (u >= 0) & (v >= 0) & (u < shape[1]) & (v < shape[0])
+        m = np.zeros(shape, np.uint8)
+        m[v[ok], u[ok]] = 1
+        return cv2.dilate(m, self._margin).view(bool)
 
     @staticmethod
     def _held(o: ObjectDetection, hand: HandDetection) -> None:
@@ -383,7 +403,7 @@ class Detector:
             return HandDetection(False)
         a, b, X = best
         ends, roots, spread = [], [], []
-        for L, bb, cc in ((lab[0], a, cl), (lab[1], b, cr)):
+        for L, bb, cc, cam in ((lab[0], a, cl, cams[0]), (lab[1], b, cr, cams[1])):
             x, y, w, h = (v // 2 for v in bb.bbox)
             x0, y0, x1, y1 = max(0, x - 2), max(0, y - 2), min(L.shape[1], x + w + 2), min(L.shape[0], y + h + 2)
             sub = L[y0:y1, x0:x1]
@@ -398,7 +418,9 @@ class Detector:
             else:
                 tm = cv2.moments((L == _T).view(np.uint8), binaryImage=True)
                 root = np.array([tm["m10"] / tm["m00"], tm["m01"] / tm["m00"]]) * 2 if tm["m00"] > 0 else bb.centroid + [0, -40]
-            dp = P - root
+            # the hand: the blob's part farthest from the shoulder (a hand in front of the torso touches
+            # the shirt all along its edge, which puts the sleeve's end in the hand's middle)
+            dp = P - (cam.project(self.arm_root)[0] if self.arm_root is not None else root)
             dist2 = np.einsum("ij,ij->i", dp, dp)       # squared: the same 75th-percentile selection as distances
             far = P[dist2 >= _pct(dist2, 75)]
             end = far.sum(axis=0) / len(far)           # far.mean(axis=0)

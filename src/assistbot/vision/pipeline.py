@@ -220,7 +220,7 @@ class Vision:
 
 
 # ---------------------------------------------------------------------------- building the library
-def build_library(seed: int = 0, n_scenes: int = 1620, root=None, progress=None) -> list:
+def build_library(seed: int = 0, n_scenes: int = 3240, root=None, progress=None) -> list:
     """Calibrate, render library scenes, and write prototypes + examples to assets/templates/."""
     from assistbot.vision.calibration import calibrate
     from assistbot.vision.capture import StereoCapture
