@@ -11,10 +11,14 @@ coordinates (m): an object's position is the centre of the base it stands on.
   meeting points with the table plane instead (more precise than stereo depth at a 0.12 m
   baseline); then moved by the object's radius along the viewing direction (the lowest
   silhouette point is the base rim's front).
-* An object is "visible" only if both cameras show all of it: its blob off the image border and
-  its silhouette's height and width at least `MIN_EXTENT` of what an upright object at that place
-  projects to (`MIN_EXTENT_HELD` for one lifted in a hand, which always covers part of it).  A
-  half-hidden object is reported unseen, not misplaced.
+* An object is "visible" if both cameras show all of it: its blob off the image border and its
+  silhouette's height and width at least `MIN_EXTENT` of what an upright object at that place
+  projects to (`MIN_EXTENT_HELD` for one lifted in a hand, which always covers part of it).  One
+  whole in one camera only, at least `MIN_EXTENT_HELD` of it in the other (its bottom hidden there,
+  by the robot's gripper say), or whole in both but with bottoms that do not triangulate onto the
+  table, is visible if it stands: its axis, triangulated from the rows that show its full width in
+  both images, within `BASE_AGREE` of where each whole camera's base ray meets the table; it is
+  placed by those rays.  A half-hidden object is reported unseen, not misplaced.
 * The working hand: skin blobs, less the static skin (the resting left arm, the face) that the
   calibration located.  Its cloud of cells, projected into each image, takes the static skin's
   pixels out of the skin label before the blobs are found, so that a working hand touching the
@@ -43,13 +47,14 @@ MIN_EXTENT_HELD = 0.55
 MAX_EXTENT = 1.3           # more than this: merged with something of the same colour
 MAX_TILT = 0.6             # rad in the image: a strongly tilted object (pouring) cannot be placed
 AXIS_ROWS = 5              # rows showing a lifted object's full width in both cameras, to place it by its axis
-HELD_DIST = 0.16           # m: a lifted object this close to the hand is held by it
+HELD_DIST = 0.16           # m: a lifted object whose axis (base to top) is this close to the hand is held by it
 #: height of the silhouette's centroid above the base (m) of a lifted, upright object
 CENTROID_Z = {"bottle": 0.085, "glass": 0.05}
 #: object heights (m) for the expected silhouettes
 HEIGHT = {"bottle": 0.194, "glass": 0.10}   # the bottle without its (red) stopper
 CROP = {"glass": (16, 20), "hand": (24, 24)}   # template sizes (w, h)
 ON_TABLE_TOL = 0.03
+BASE_AGREE = 0.02          # m: a standing object's axis is where a camera that sees its base puts that base
 FACE_Z = 0.40              # m above the table: skin higher than this is the face, not the working hand
 STATIC_SKIN_R = 0.08       # m: skin this close to a calibrated static spot is not the working hand
 STATIC_MARGIN = 2          # half-resolution px (~1-2 cm at the table) around the static cells' projections
@@ -147,6 +152,35 @@ def _match(a: Blob, cands: list[Blob]) -> Blob | None:
         if s < score:
             best, score = b, s
     return best
+
+
+def _rim_to_axis(cam: CameraModel, uv, z: float, r: float) -> tuple[float, float, float]:
+    """Where the ray through pixel uv, the front of a rim at height z, meets that height, moved
+    horizontally by r away from the camera: the axis of an upright object of radius r whose
+    silhouette's lowest point (its base's front rim) uv is.  On floats, the operations of
+    P = on_plane(...)[0]; P[:2] += r * (P[:2] - C[:2]) / np.linalg.norm(P[:2] - C[:2])."""
+    px, py, pz = on_plane(cam, uv, z)[0].tolist()
+    cx, cy = cam.C[:2].tolist()
+    hx, hy = px - cx, py - cy
+    n = math.sqrt(hx * hx + hy * hy)
+    return px + r * hx / n, py + r * hy / n, pz
+
+
+def _axis_xy(cams, rois) -> np.ndarray | None:
+    """x, y of an upright object's axis from the rows showing its full width in both images (the
+    middles of their edges, triangulated; the median), or None with fewer than `AXIS_ROWS` such rows."""
+    (vl, ul), (vr, ur) = rois[0].axis(), rois[1].axis()
+    # the head's cameras are parallel and side by side, so a point shows in the same row of both
+    # rows in both (sorted, unique): where each of vl is in vr
+    ir = np.minimum(np.searchsorted(vr, vl), max(0, vr.size - 1))
+    il = np.flatnonzero(vr[ir] == vl) if vr.size else np.zeros(0, int)
+    ir = ir[il]
+    common = vl[il]
+    if common.size < AXIS_ROWS:
+        return None
+    v = common + 0.5
+    X = triangulate(cams[0], cams[1], np.column_stack([ul[il], v]), np.column_stack([ur[ir], v]))
+    return _median0(X[:, :2])
 
 
 class _Roi:
@@ -274,8 +308,12 @@ class Detector:
         """A lifted object is seen only in the hand (else: a hidden bottom edge, a bad match)."""
         if o.visible or o.on_table or o.position is None or not o.inside or not hand.visible:
             return
-        centre = o.position + [0, 0, CENTROID_Z[o.name]]
-        o.visible = bool(np.linalg.norm(hand.position - centre) < HELD_DIST and MIN_EXTENT_HELD <= o.extent <= MAX_EXTENT
+        # the hand's distance from the object's axis, base to top: a grip from above holds its top, whose
+        # fingers (the hand's far end) reach past it, a side grip its middle
+        base = o.position
+        rise = min(max(float(hand.position[2] - base[2]), 0.0), HEIGHT[o.name])
+        near = base + [0.0, 0.0, rise]
+        o.visible = bool(np.linalg.norm(hand.position - near) < HELD_DIST and MIN_EXTENT_HELD <= o.extent <= MAX_EXTENT
                          and o.tilt < MAX_TILT and o.position[2] > 0.02)
 
     # ------------------------------------------------------------------ objects
@@ -300,45 +338,40 @@ class Detector:
         Xb, Xt = triangulate(cams[0], cams[1], np.array([rois[0].bottom, rois[0].top]), np.array([rois[1].bottom, rois[1].top]))
         r_obj = layout.OBJECT_RADIUS[name]
         on_table = abs(Xb[2]) < ON_TABLE_TOL
+        bases = [_rim_to_axis(cam, roi.bottom, 0.0, r_obj) for cam, roi in zip(cams, rois)]
         if on_table:
-            # on floats, the operations of: P = on_plane(...)[0]; hdir = P[:2] - C[:2];
-            # P[:2] += r_obj * hdir / np.linalg.norm(hdir); pos = np.mean([P_left, P_right], axis=0)
-            pts = []
-            for cam, roi in zip(cams, rois):
-                px, py, pz = on_plane(cam, roi.bottom, 0.0)[0].tolist()
-                cx, cy = cam.C[:2].tolist()
-                hx, hy = px - cx, py - cy
-                n = math.sqrt(hx * hx + hy * hy)
-                pts.append((px + r_obj * hx / n, py + r_obj * hy / n, pz))
-            (ax, ay, az), (bx, by, bz) = pts
+            (ax, ay, az), (bx, by, bz) = bases
             pos = np.array([(ax + bx) / 2, (ay + by) / 2, (az + bz) / 2])
         else:   # lifted: x, y from the axis in both images; the height from the silhouette's centroid
             pos = triangulate(cams[0], cams[1], rois[0].centroid, rois[1].centroid)[0]
             pos[2] -= CENTROID_Z[name]
-            (vl, ul), (vr, ur) = rois[0].axis(), rois[1].axis()
-            # the head's cameras are parallel and side by side, so a point shows in the same row of both
-            # rows in both (sorted, unique): where each of vl is in vr
-            ir = np.minimum(np.searchsorted(vr, vl), max(0, vr.size - 1))
-            il = np.flatnonzero(vr[ir] == vl) if vr.size else np.zeros(0, int)
-            ir = ir[il]
-            common = vl[il]
-            if common.size >= AXIS_ROWS:
-                v = common + 0.5
-                X = triangulate(cams[0], cams[1], np.column_stack([ul[il], v]), np.column_stack([ur[ir], v]))
-                pos[:2] = _median0(X[:, :2])
+            axis = _axis_xy(cams, rois)
+            if axis is not None:
+                pos[:2] = axis
             else:
                 hdir = pos[:2] - 0.5 * (cams[0].C[:2] + cams[1].C[:2])
                 pos[:2] += 0.5 * r_obj * hdir / np.linalg.norm(hdir)
-        extent = 9.0
         H, W = imgs[0].shape[:2]
-        inside = True
+        exts, ins = [], []
         for (ew, eh), roi, bb in zip(expected_boxes(cams, pos + _OUTLINE[name]), rois, (a, b)):
-            extent = min(extent, roi.h_capped / max(eh, 1.0), roi.w / max(ew, 1.0))
+            exts.append(min(roi.h_capped / max(eh, 1.0), roi.w / max(ew, 1.0)))
             x, y, w, h = bb.bbox
-            inside &= x > 1 and y > 1 and x + w < W - 1 and y + h < H - 1
+            ins.append(x > 1 and y > 1 and x + w < W - 1 and y + h < H - 1)
+        extent, inside = min(9.0, *exts), ins[0] and ins[1]
+        whole = [i and MIN_EXTENT <= e <= MAX_EXTENT for e, i in zip(exts, ins)]
         tilt = max(roi.upright_tilt() for roi in rois)
         # standing on the table and whole; a lifted one is decided once the hand is known (`_held`)
-        visible = bool(inside and on_table and MIN_EXTENT <= extent <= MAX_EXTENT and tilt < MAX_TILT)
+        visible = bool(on_table and whole[0] and whole[1] and tilt < MAX_TILT)
+        if (not visible and any(whole) and ins[0] and ins[1] and tilt < MAX_TILT
+                and MIN_EXTENT_HELD <= extent and max(exts) <= MAX_EXTENT):
+            # whole in a camera but its bottom hidden in the other (by the robot's gripper, say), or the
+            # two bottoms not one point: standing if its axis (from the rows showing its full width in
+            # both) stands where each whole camera's base ray meets the table; placed by those rays
+            whole_bases = [bases[c] for c in (0, 1) if whole[c]]
+            axis = _axis_xy(cams, rois)
+            if axis is not None and all(math.hypot(x - axis[0], y - axis[1]) < BASE_AGREE for x, y, _ in whole_bases):
+                pos = np.array([sum(p[0] for p in whole_bases), sum(p[1] for p in whole_bases), 0.0]) / len(whole_bases)
+                on_table = visible = True
         det = ObjectDetection(name, visible, pos, (a, b), extent=float(extent), tilt=float(tilt), top=Xt)
         det.on_table, det.inside = on_table, inside
         self._object_features(det, rois, cams, pos)

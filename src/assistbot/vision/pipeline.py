@@ -168,7 +168,9 @@ class Vision:
                     return abs(float(v[0] * d[1] - v[1] * d[0])) if along > -0.05 else 9.0
                 hp.pointed_at = min(seen_objs, key=off)
         hp.held_out = bool(X[0] > HELD_OUT_X and X[2] > HELD_OUT_Z and posture in ("grasp_ag", "grasp_sg", "open_palm_request"))
-        if hp.object_in_hand and hp.held_out:
+        if hp.object_in_hand and hp.held_out and not p.objects[hp.object_in_hand].seen:
+            # held out but not placed (lifted objects are hard to place): in the hand's zone; one that is
+            # seen keeps its own, which the hand's end (fingers around it, past the middle line) is not
             p.objects[hp.object_in_hand].zone = "HWS" if X[0] < 0 else "RWS"
         return hp
 
