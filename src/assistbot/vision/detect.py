@@ -35,7 +35,7 @@ import numpy as np
 cv2.setNumThreads(1)   # per-frame work on small images: OpenCV's thread pool costs more than it saves
 
 from assistbot.vision.camera import CameraModel, expected_boxes, on_plane, triangulate
-from assistbot.vision.segment import LABEL, Blob, ColourTable, components_each
+from assistbot.vision.segment import LABEL, Blob, ColourTable, components_each, cover
 from assistbot.world import layout
 
 MIN_EXTENT = 0.82
@@ -56,6 +56,8 @@ STATIC_MARGIN = 2          # half-resolution px (~1-2 cm at the table) around th
 HAND_REACH = 0.10          # m: hand crop half-size
 _B, _S, _G, _L, _K, _T = (LABEL[p] for p in ("bottle", "stopper", "glass", "liquid", "skin", "shirt"))
 assert _L == _G + 1      # the glass mask is one inRange over both labels
+#: the label ranges of the blob masks: bottle, glass or liquid (consecutive labels), skin
+_BLOB_LABELS = ((_B, _B), (_G, _L), (_K, _K))
 _DILATE = np.ones((5, 5), np.uint8)
 _DILATE3 = np.ones((3, 3), np.uint8)
 #: label -> 1 if it is one of these parts, per part set used for a silhouette (a cv2.LUT table)
@@ -242,15 +244,12 @@ class Detector:
 
     def __call__(self, left: np.ndarray, right: np.ndarray, cams: tuple[CameraModel, CameraModel]) -> Detections:
         imgs = (left, right)
-        lab = tuple(self.table.labels(im, 2) for im in imgs)
-        if len(self.static_cells):
-            for L, cam in zip(lab, cams):
-                L[self.static_mask(cam, L.shape) & (L == _K)] = 0
+        # half-resolution labels without the static skin, and the masks of bottle, glass (or liquid) and skin
+        spots = [self.static_spots(cam) if len(self.static_cells) else None for cam in cams]
+        lab, masks = zip(*(self.table.half(im, _BLOB_LABELS, _K, sp, self._margin) for im, sp in zip(imgs, spots)))
         det = Detections(labels=lab)
         # the blobs of each part in each camera (a right-image part only where the left has one to pair with)
-        # (glass or liquid: one inRange, 0/255, the labels being consecutive)
-        found, views = components_each([[L == _B, cv2.inRange(L, _G, _L), L == _K] for L in lab],
-                                       ("bottle", "glass", "skin"), (2, 2, 6), pairs_only=True, views_of=(2,))
+        found, views = components_each(masks, ("bottle", "glass", "skin"), (2, 2, 6), pairs_only=True, views_of=(2,))
         blobs = [{"bottle": f[0], "glass": f[1], "skin": (f[2], v[2])} for f, v in zip(found, views)]
         for name in ("bottle", "glass"):
             det.objects[name] = self._object(name, blobs, imgs, cams)
@@ -259,15 +258,13 @@ class Detector:
             self._held(o, det.hand)
         return det
 
+    def static_spots(self, cam: CameraModel) -> np.ndarray:
+        """The static skin cells' projections in a half-resolution image of this camera ((N, 2) u, v)."""
+        return cam.project(self.static_cells) * 0.5
+
     def static_mask(self, cam: CameraModel, shape: tuple[int, int]) -> np.ndarray:
         """Where the static skin cells show in a half-resolution image of this camera (bool)."""
-        uv = cam.project(self.static_cells) * 0.5
-        ok = np.isfinite(uv).all(axis=1)
-        u, v = uv[ok, 0].astype(int), uv[ok, 1].astype(int)
-        ok = (u >= 0) & (v >= 0) & (u < shape[1]) & (v < shape[0])
-        m = np.zeros(shape, np.uint8)
-        m[v[ok], u[ok]] = 1
-        return cv2.dilate(m, self._margin).view(bool)
+        return cover(self.static_spots(cam), self._margin, shape)
 
     @staticmethod
     def _held(o: ObjectDetection, hand: HandDetection) -> None:

@@ -19,6 +19,11 @@ from dataclasses import dataclass
 import cv2
 import numpy as np
 
+try:   # the compiled per-pixel pass (numba, a dependency of the fields too); numpy without it
+    from assistbot.vision import _kernels
+except ImportError:  # pragma: no cover
+    _kernels = None
+
 PARTS = ("bottle", "stopper", "glass", "liquid", "skin", "shirt")
 #: label values of the label image (0: none of the parts)
 LABEL = {p: i + 1 for i, p in enumerate(PARTS)}
@@ -66,6 +71,8 @@ class ColourTable:
         q6 = np.arange(n)
         self.lut24 = np.zeros(1 << 24, np.uint8)
         self.lut24[(q6[:, None, None] << 16) | (q6[None, :, None] << 8) | q6[None, None, :]] = t3
+        if _kernels is not None:   # compile (or load from numba's cache) now, not in the first frame
+            self.half(np.zeros((2, 2, 3), np.uint8), ((1, 1),), 1, np.zeros((1, 2)), np.ones((1, 1), np.uint8))
 
     def labels(self, img: np.ndarray, step: int = 1) -> np.ndarray:
         """(H/step, W/step) uint8 labels of an RGB image (every `step`-th pixel)."""
@@ -78,6 +85,40 @@ class ColourTable:
         # table, so it gathers the colour's label directly (no masking pass over the image)
         code = cv2.cvtColor(sub >> (8 - _BITS), cv2.COLOR_RGB2BGRA).view(np.int32).reshape(h, w)
         return np.take(self.lut24, code)
+
+    def half(self, img: np.ndarray, ranges: tuple[tuple[int, int], ...], clear: int = 0, spots: np.ndarray | None = None,
+             stamp: np.ndarray | None = None) -> tuple[np.ndarray, list[np.ndarray]]:
+        """``labels(img, 2)`` with label ``clear`` removed (0) where `cover` of the half-resolution points
+        ``spots`` (u, v) by ``stamp`` lies, and a mask per label range (lo, hi) of the result (bool; uint8 0/255 on the numpy path).
+
+        One compiled pass over the image when numba is there (see `_kernels`): the image comes fresh
+        from the renderer, which has evicted the CPU caches, so each of the numpy path's passes (resize,
+        shift, colour packing, gather, the cover's dilation, clearing, one comparison per mask) would
+        read from memory and run cold code of its own; the same integers either way."""
+        H, W = img.shape[:2]
+        if spots is None or stamp is None:
+            spots, stamp = np.zeros((0, 2)), np.ones((1, 1), np.uint8)
+        if (_kernels is not None and img.dtype == np.uint8 and img.ndim == 3 and img.shape[2] == 3 and H % 2 == 0
+                and W % 2 == 0 and H > 0 and W > 0 and img.flags.c_contiguous):
+            lo = np.array([r[0] for r in ranges], np.uint8)
+            hi = np.array([r[1] for r in ranges], np.uint8)
+            lab, masks = _kernels.label_half(img, self.lut, np.ascontiguousarray(spots, np.float64), stamp, clear, lo, hi)
+            return lab, list(masks)
+        lab = self.labels(img, 2)
+        if len(spots):
+            lab[cover(spots, stamp, lab.shape) & (lab == clear)] = 0
+        return lab, [cv2.inRange(lab, lo, hi) for lo, hi in ranges]     # 0/255: components take nonzero
+
+
+def cover(spots: np.ndarray, stamp: np.ndarray, shape: tuple[int, int]) -> np.ndarray:
+    """Where points (u, v) (floats, truncated to pixels; non-finite ones and those outside left out),
+    dilated by the structuring element ``stamp``, lie in an image of this shape (bool)."""
+    ok = np.isfinite(spots).all(axis=1)
+    u, v = spots[ok, 0].astype(int), spots[ok, 1].astype(int)
+    ok = (u >= 0) & (v >= 0) & (u < shape[1]) & (v < shape[0])
+    m = np.zeros(shape, np.uint8)
+    m[v[ok], u[ok]] = 1
+    return cv2.dilate(m, stamp).view(bool)
 
 
 def components(mask: np.ndarray, part: str, keep: int = 4, scale: int = 2) -> tuple[list[Blob], np.ndarray]:
