@@ -59,3 +59,18 @@ def label_half(img, lut, spots, stamp, clear, lo, hi):
             for x in range(W2):
                 masks[k, y, x] = np.uint8(lab[y, x] - first) <= span     # first <= label <= hi[k]
     return lab, masks
+
+
+@numba.njit(cache=True, nogil=True)
+def label_region(img, lut, part):
+    """Labels of all pixels of an RGB image or a region of one (any strides), by the 64^3 table, and
+    the mask of the labels that ``part`` (256 entries, 0 or 1) selects."""
+    H, W = img.shape[0], img.shape[1]
+    lab = np.empty((H, W), np.uint8)
+    mask = np.empty((H, W), np.bool_)
+    for y in range(H):
+        for x in range(W):
+            c = lut[((np.intp(img[y, x, 0]) >> 2) << 12) | ((np.intp(img[y, x, 1]) >> 2) << 6) | (np.intp(img[y, x, 2]) >> 2)]
+            lab[y, x] = c
+            mask[y, x] = part[c] != 0
+    return lab, mask

@@ -60,8 +60,9 @@ assert _L == _G + 1      # the glass mask is one inRange over both labels
 _BLOB_LABELS = ((_B, _B), (_G, _L), (_K, _K))
 _DILATE = np.ones((5, 5), np.uint8)
 _DILATE3 = np.ones((3, 3), np.uint8)
-#: label -> 1 if it is one of these parts, per part set used for a silhouette (a cv2.LUT table)
+#: label -> 1 if it is one of these parts, per part set used for a silhouette, and for the hand's crop
 _PART_LUT = {ps: np.isin(np.arange(256), ps).astype(np.uint8) for ps in ((_B,), (_G, _L))}
+_SKIN_LUT = np.isin(np.arange(256), (_K,)).astype(np.uint8)
 _ANG = np.linspace(0, 2 * np.pi, 8, endpoint=False)
 #: an upright object's outline points (base and top rings) relative to its base centre
 _OUTLINE = {n: np.vstack([np.column_stack([layout.OBJECT_RADIUS[n] * np.cos(_ANG), layout.OBJECT_RADIUS[n] * np.sin(_ANG), np.full(8, z)])
@@ -160,8 +161,7 @@ class _Roi:
         self.x0, self.y0 = max(0, x - 4), max(0, y - pad_top)
         x1, y1 = min(W, x + w + 4), min(H, y + h + 4)
         self.img = img[self.y0:y1, self.x0:x1]
-        self.lab = table.labels(self.img)
-        m = cv2.LUT(self.lab, _PART_LUT[parts]).view(bool).reshape(self.lab.shape)   # one gather: the label is one of the parts
+        self.lab, m = table.region(self.img, _PART_LUT[parts])     # the labels, and where they are one of the parts
         self.mask = m
         m8 = m.view(np.uint8)
         bx, by, bw, bh = cv2.boundingRect(m8)   # the silhouette's extent
@@ -437,7 +437,7 @@ class Detector:
         depth = math.sqrt(dd.dot(dd))             # np.linalg.norm(Xd - C)
         half = int(round(cams[0].K[0, 0] * HAND_REACH / depth))
         u, v = (int(round(c)) for c in ends[0])
-        skin_full = self.table.labels(imgs[0][max(0, v - half):v + half, max(0, u - half):u + half]) == _K
+        skin_full = self.table.region(imgs[0][max(0, v - half):v + half, max(0, u - half):u + half], _SKIN_LUT)[1]
         crop = _crop(skin_full.astype(np.float32), 0, 0, skin_full.shape[1], skin_full.shape[0], CROP["hand"]) \
             if skin_full.size else np.zeros(CROP["hand"][::-1], np.float32)
         px = depth / cams[0].K[0, 0]                                # m per pixel at the hand

@@ -73,6 +73,8 @@ class ColourTable:
         self.lut24[(q6[:, None, None] << 16) | (q6[None, :, None] << 8) | q6[None, None, :]] = t3
         if _kernels is not None:   # compile (or load from numba's cache) now, not in the first frame
             self.half(np.zeros((2, 2, 3), np.uint8), ((1, 1),), 1, np.zeros((1, 2)), np.ones((1, 1), np.uint8))
+            for img in (np.zeros((2, 2, 3), np.uint8), np.zeros((2, 2, 3), np.uint8)[:, :1]):   # whole, strided
+                self.region(img, np.zeros(256, np.uint8))
 
     def labels(self, img: np.ndarray, step: int = 1) -> np.ndarray:
         """(H/step, W/step) uint8 labels of an RGB image (every `step`-th pixel)."""
@@ -85,6 +87,14 @@ class ColourTable:
         # table, so it gathers the colour's label directly (no masking pass over the image)
         code = cv2.cvtColor(sub >> (8 - _BITS), cv2.COLOR_RGB2BGRA).view(np.int32).reshape(h, w)
         return np.take(self.lut24, code)
+
+    def region(self, img: np.ndarray, part: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """``labels(img)`` of an image or a region of one, and its mask (bool) of the labels that ``part``
+        (a 256-entry 0/1 table over the labels) selects: one compiled pass with numba (see `half`)."""
+        if _kernels is not None and img.dtype == np.uint8 and img.ndim == 3 and img.shape[2] == 3:
+            return _kernels.label_region(img, self.lut, part)
+        lab = self.labels(img)
+        return lab, np.take(part, lab).view(bool)
 
     def half(self, img: np.ndarray, ranges: tuple[tuple[int, int], ...], clear: int = 0, spots: np.ndarray | None = None,
              stamp: np.ndarray | None = None) -> tuple[np.ndarray, list[np.ndarray]]:
