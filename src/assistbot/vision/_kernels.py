@@ -74,3 +74,62 @@ def label_region(img, lut, part):
             lab[y, x] = c
             mask[y, x] = part[c] != 0
     return lab, mask
+
+
+@numba.njit(cache=True, nogil=True)
+def silhouette(mask):
+    """A mask's rows that have pixels, their first and last pixel's columns, and the extents
+    [x, y, w, h (cv2.boundingRect), first and last column of its bottom two rows, of its top two
+    rows] (all 0 for an empty mask)."""
+    H, W = mask.shape
+    rows = np.empty(H, np.intp)
+    first = np.empty(H, np.intp)
+    last = np.empty(H, np.intp)
+    n = 0
+    for y in range(H):
+        f = -1
+        for x in range(W):
+            if mask[y, x]:
+                f = x
+                break
+        if f < 0:
+            continue
+        l = f
+        for x in range(W - 1, f, -1):
+            if mask[y, x]:
+                l = x
+                break
+        rows[n], first[n], last[n] = y, f, l
+        n += 1
+    ext = np.zeros(8, np.intp)
+    if n:
+        top, bot = rows[0], rows[n - 1]
+        ext[0], ext[2] = W, 0
+        ext[4], ext[5], ext[6], ext[7] = W, -1, W, -1
+        for i in range(n):
+            ext[0] = min(ext[0], first[i])
+            ext[2] = max(ext[2], last[i])
+            if rows[i] >= max(top, bot - 1):       # the bottom two rows
+                ext[4], ext[5] = min(ext[4], first[i]), max(ext[5], last[i])
+            if rows[i] <= top + 1:                 # the top two rows
+                ext[6], ext[7] = min(ext[6], first[i]), max(ext[7], last[i])
+        ext[1], ext[3] = top, bot - top + 1
+        ext[2] = ext[2] - ext[0] + 1
+    return rows[:n], first[:n], last[:n], ext
+
+
+@numba.njit(cache=True, nogil=True)
+def first_row_over(lab, mask, part, lo, hi):
+    """The first row in [lo, hi] with a pixel labelled ``part`` in a column where ``mask`` has pixels
+    (in any row); -1 if none."""
+    H, W = mask.shape
+    cols = np.zeros(W, np.bool_)
+    for y in range(H):
+        for x in range(W):
+            if mask[y, x]:
+                cols[x] = True
+    for y in range(max(lo, 0), min(hi, H - 1) + 1):
+        for x in range(W):
+            if lab[y, x] == part and cols[x]:
+                return y
+    return -1

@@ -35,7 +35,7 @@ import numpy as np
 cv2.setNumThreads(1)   # per-frame work on small images: OpenCV's thread pool costs more than it saves
 
 from assistbot.vision.camera import CameraModel, expected_boxes, on_plane, triangulate
-from assistbot.vision.segment import LABEL, Blob, ColourTable, components_each, cover
+from assistbot.vision.segment import LABEL, Blob, ColourTable, components_each, cover, first_row_over, silhouette
 from assistbot.world import layout
 
 MIN_EXTENT = 0.82
@@ -163,8 +163,9 @@ class _Roi:
         self.img = img[self.y0:y1, self.x0:x1]
         self.lab, m = table.region(self.img, _PART_LUT[parts])     # the labels, and where they are one of the parts
         self.mask = m
-        m8 = m.view(np.uint8)
-        bx, by, bw, bh = cv2.boundingRect(m8)   # the silhouette's extent
+        # its rows' first and last pixels (for `axis`) and the silhouette's extent
+        self._rows = silhouette(m)
+        _, by, bw, bh, bl, br, tl, tr = self._rows[3].tolist()
         self.ok = bw > 0
         if not self.ok:
             return
@@ -172,11 +173,9 @@ class _Roi:
         self.w = float(bw)
         self.h = float(bh)
         # the bottom (top) two rows' leftmost and rightmost pixels
-        _, _, bw2, _ = bb = cv2.boundingRect(m8[max(self.top_r, self.bot_r - 1):self.bot_r + 1])
-        _, _, tw2, _ = tb = cv2.boundingRect(m8[self.top_r:self.top_r + 2])
-        self.bottom = np.array([self.x0 + bb[0] + 0.5 * (bw2 - 1), self.y0 + self.bot_r + 0.5])
-        self.top = np.array([self.x0 + tb[0] + 0.5 * (tw2 - 1), self.y0 + self.top_r - 0.5])
-        mo = cv2.moments(m8, binaryImage=True)
+        self.bottom = np.array([self.x0 + bl + 0.5 * (br - bl), self.y0 + self.bot_r + 0.5])
+        self.top = np.array([self.x0 + tl + 0.5 * (tr - tl), self.y0 + self.top_r - 0.5])
+        mo = cv2.moments(m.view(np.uint8), binaryImage=True)
         n = mo["m00"]
         self.centroid = np.array([mo["m10"] / n + self.x0 + 0.5, mo["m01"] / n + self.y0 + 0.5])
         self.tilt = 0.0
@@ -194,12 +193,9 @@ class _Roi:
     def cap(self, part: int) -> None:
         """Count pixels of ``part`` right on top of the silhouette (a stopper in the bottle's neck, which
         a camera looking down at a near bottle sees in front of the neck) into its height."""
-        cols = self.mask.any(axis=0)
-        capped = (self.lab[:self.bot_r + 1] == part) & cols
-        rows = np.flatnonzero(capped.any(axis=1))
-        rows = rows[rows >= self.top_r - max(3, int(0.3 * self.h))]
-        if rows.size:
-            self.h_capped = float(self.bot_r - min(self.top_r, int(rows[0])) + 1)
+        row = first_row_over(self.lab, self.mask, part, self.top_r - max(3, int(0.3 * self.h)), self.bot_r)
+        if row >= 0:
+            self.h_capped = float(self.bot_r - min(self.top_r, row) + 1)
 
     def upright_tilt(self) -> float:
         """The silhouette's tilt from the image vertical: of its axis (the line through its full-width
@@ -220,11 +216,7 @@ class _Roi:
         top, bottom or part of a side (which the silhouette's centroid is not).  Computed once."""
         if self._axis is not None:
             return self._axis
-        m = self.mask
-        rows = np.flatnonzero(m.any(axis=1))
-        sub = m[rows]
-        first = sub.argmax(axis=1)
-        last = m.shape[1] - 1 - sub[:, ::-1].argmax(axis=1)
+        rows, first, last, _ = self._rows
         width = last - first + 1
         full = _pct(width, 80)
         ok = np.abs(width - full) <= max(1.5, 0.12 * full)

@@ -74,7 +74,9 @@ class ColourTable:
         if _kernels is not None:   # compile (or load from numba's cache) now, not in the first frame
             self.half(np.zeros((2, 2, 3), np.uint8), ((1, 1),), 1, np.zeros((1, 2)), np.ones((1, 1), np.uint8))
             for img in (np.zeros((2, 2, 3), np.uint8), np.zeros((2, 2, 3), np.uint8)[:, :1]):   # whole, strided
-                self.region(img, np.zeros(256, np.uint8))
+                lab, mask = self.region(img, np.zeros(256, np.uint8))
+            silhouette(mask)
+            first_row_over(lab, mask, 1, 0, 1)
 
     def labels(self, img: np.ndarray, step: int = 1) -> np.ndarray:
         """(H/step, W/step) uint8 labels of an RGB image (every `step`-th pixel)."""
@@ -118,6 +120,36 @@ class ColourTable:
         if len(spots):
             lab[cover(spots, stamp, lab.shape) & (lab == clear)] = 0
         return lab, [cv2.inRange(lab, lo, hi) for lo, hi in ranges]     # 0/255: components take nonzero
+
+
+def silhouette(mask: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """A (bool) mask's rows that have pixels, their first and last pixel's columns (intp), and its
+    extents (intp): x, y, w, h (as cv2.boundingRect), the first and last column of its bottom two rows
+    and of its top two rows (all 0 if empty).  One compiled pass with numba (see `ColourTable.half`)."""
+    if _kernels is not None and mask.dtype == np.bool_ and mask.ndim == 2:
+        return _kernels.silhouette(mask)
+    m8 = mask.view(np.uint8)
+    rows = np.flatnonzero(mask.any(axis=1))
+    sub = mask[rows]
+    first = sub.argmax(axis=1)
+    last = mask.shape[1] - 1 - sub[:, ::-1].argmax(axis=1)
+    x, y, w, h = cv2.boundingRect(m8)
+    if w == 0:
+        return rows, first, last, np.zeros(8, np.intp)
+    bot = y + h - 1
+    bx, _, bw, _ = cv2.boundingRect(m8[max(y, bot - 1):bot + 1])
+    tx, _, tw, _ = cv2.boundingRect(m8[y:y + 2])
+    return rows, first, last, np.array([x, y, w, h, bx, bx + bw - 1, tx, tx + tw - 1], np.intp)
+
+
+def first_row_over(lab: np.ndarray, mask: np.ndarray, part: int, lo: int, hi: int) -> int:
+    """The first row in [lo, hi] of a label image with a pixel labelled ``part`` in a column where the
+    (bool) mask has pixels in any row; -1 if none.  Compiled with numba (see `ColourTable.half`)."""
+    if _kernels is not None and mask.dtype == np.bool_:
+        return _kernels.first_row_over(lab, mask, part, lo, hi)
+    rows = np.flatnonzero(((lab[:hi + 1] == part) & mask.any(axis=0)).any(axis=1))
+    rows = rows[rows >= lo]
+    return int(rows[0]) if rows.size else -1
 
 
 def cover(spots: np.ndarray, stamp: np.ndarray, shape: tuple[int, int]) -> np.ndarray:
