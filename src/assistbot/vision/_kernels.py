@@ -133,3 +133,70 @@ def first_row_over(lab, mask, part, lo, hi):
             if lab[y, x] == part and cols[x]:
                 return y
     return -1
+
+
+@numba.njit(cache=True, nogil=True)
+def blob_pixels(comp, label, lab, near_label, x0, y0, x1, y1):
+    """In the window [y0, y1) x [x0, x1) of a half-resolution image: the centres (x, y), at full
+    resolution, of the pixels of component ``label`` (of the components' label image ``comp``) in
+    row-major order, and of those next to (3x3, within the window) a pixel labelled ``near_label``
+    in ``lab``: their count and the sums of their window columns and rows."""
+    n = 0
+    for y in range(y0, y1):
+        for x in range(x0, x1):
+            if comp[y, x] == label:
+                n += 1
+    P = np.empty((n, 2), np.float64)
+    i = 0
+    touch, sx, sy = 0, 0, 0
+    for y in range(y0, y1):
+        for x in range(x0, x1):
+            if comp[y, x] != label:
+                continue
+            P[i, 0] = (x - x0) * 2.0 + (2 * x0 + 0.5)
+            P[i, 1] = (y - y0) * 2.0 + (2 * y0 + 0.5)
+            i += 1
+            near = False
+            for yy in range(max(y0, y - 1), min(y1, y + 2)):
+                for xx in range(max(x0, x - 1), min(x1, x + 2)):
+                    if lab[yy, xx] == near_label:
+                        near = True
+            if near:
+                touch += 1
+                sx += x - x0
+                sy += y - y0
+    return P, touch, sx, sy
+
+
+@numba.njit(cache=True, nogil=True)
+def count_near(lab, mask, part, r):
+    """The number of pixels labelled ``part`` with a ``mask`` pixel within r pixels (a (2r+1)^2 box,
+    inside the image): the count of ``part`` in the mask dilated by that box."""
+    H, W = lab.shape
+    n = 0
+    for y in range(H):
+        for x in range(W):
+            if lab[y, x] != part:
+                continue
+            hit = False
+            for yy in range(max(0, y - r), min(H, y + r + 1)):
+                for xx in range(max(0, x - r), min(W, x + r + 1)):
+                    if mask[yy, xx]:
+                        hit = True
+            if hit:
+                n += 1
+    return n
+
+
+@numba.njit(cache=True, nogil=True)
+def masked_saturation(img, mask):
+    """HSV saturation (max - min) / max(max, 1) of an RGB image (any strides) in float32, 0 off the mask."""
+    H, W = mask.shape
+    out = np.zeros((H, W), np.float32)
+    for y in range(H):
+        for x in range(W):
+            if mask[y, x]:
+                r, g, b = img[y, x, 0], img[y, x, 1], img[y, x, 2]
+                mx = np.float32(max(r, g, b))
+                out[y, x] = (mx - np.float32(min(r, g, b))) / max(mx, np.float32(1.0))
+    return out

@@ -35,7 +35,8 @@ import numpy as np
 cv2.setNumThreads(1)   # per-frame work on small images: OpenCV's thread pool costs more than it saves
 
 from assistbot.vision.camera import CameraModel, expected_boxes, on_plane, triangulate
-from assistbot.vision.segment import LABEL, Blob, ColourTable, components_each, cover, first_row_over, silhouette
+from assistbot.vision.segment import (LABEL, Blob, ColourTable, blob_pixels, components_each, count_near, cover,
+                                      first_row_over, masked_saturation, silhouette)
 from assistbot.world import layout
 
 MIN_EXTENT = 0.82
@@ -58,8 +59,6 @@ _B, _S, _G, _L, _K, _T = (LABEL[p] for p in ("bottle", "stopper", "glass", "liqu
 assert _L == _G + 1      # the glass mask is one inRange over both labels
 #: the label ranges of the blob masks: bottle, glass or liquid (consecutive labels), skin
 _BLOB_LABELS = ((_B, _B), (_G, _L), (_K, _K))
-_DILATE = np.ones((5, 5), np.uint8)
-_DILATE3 = np.ones((3, 3), np.uint8)
 #: label -> 1 if it is one of these parts, per part set used for a silhouette, and for the hand's crop
 _PART_LUT = {ps: np.isin(np.arange(256), ps).astype(np.uint8) for ps in ((_B,), (_G, _L))}
 _SKIN_LUT = np.isin(np.arange(256), (_K,)).astype(np.uint8)
@@ -343,8 +342,7 @@ class Detector:
             exp = np.pi * (0.019 * f / depth) ** 2 * 0.5
             red, occ = [], []
             for roi in rois:
-                near = cv2.dilate(roi.mask.view(np.uint8), _DILATE) > 0
-                red.append(min(1.5, float(np.count_nonzero(near & (roi.lab == _S))) / exp))
+                red.append(min(1.5, float(count_near(roi.lab, roi.mask, _S, 2)) / exp))    # within 2 px
                 band = roi.lab[max(0, roi.top_r - int(0.3 * roi.h)):roi.top_r + 3]
                 occ.append(float(np.count_nonzero(band == _K)) / max(1.0, 0.3 * roi.h * roi.w))
             det.stopper = (red[0], red[1])
@@ -354,16 +352,13 @@ class Detector:
             return
         roi = rois[0]
         m = roi.mask
-        liq = [float(np.count_nonzero(r.mask & (r.lab == _L))) / max(1.0, r.area) for r in rois]
+        liq = [float(count_near(r.lab, r.mask, _L, 0)) / max(1.0, r.area) for r in rois]
         third = max(1, int(roi.h) // 3)
         rows = m[roi.top_r:roi.bot_r + 1]
         width_top = float(rows[:third].sum()) / third
         width_bot = float(rows[-third:].sum()) / third
         shape = (width_top - width_bot) / max(1.0, roi.w)
-        r, g, b = cv2.split(roi.img)
-        mx = cv2.max(cv2.max(r, g), b).astype(np.float32)
-        sat = (mx - cv2.min(cv2.min(r, g), b)) / np.maximum(mx, 1.0)
-        det.crop = _crop(sat * m, 0, roi.top_r - 1, m.shape[1], roi.bot_r + 2, CROP["glass"])
+        det.crop = _crop(masked_saturation(roi.img, m), 0, roi.top_r - 1, m.shape[1], roi.bot_r + 2, CROP["glass"])
         det.feat = np.array([max(liq), min(liq), shape, det.tilt, float(pos[2])], np.float32)
 
     # ------------------------------------------------------------------ hand
@@ -395,15 +390,11 @@ class Detector:
         for L, bb, cc, cam in ((lab[0], a, cl, cams[0]), (lab[1], b, cr, cams[1])):
             x, y, w, h = (v // 2 for v in bb.bbox)
             x0, y0, x1, y1 = max(0, x - 2), max(0, y - 2), min(L.shape[1], x + w + 2), min(L.shape[0], y + h + 2)
-            sub = L[y0:y1, x0:x1]
-            skin = cc[y0:y1, x0:x1] == bb.label        # this blob's own pixels (from the one components pass)
-            # the pixels' centres (x, y) at full resolution: small integers and halves, exact in any order
-            P = np.argwhere(skin)[:, ::-1] * 2.0 + [2 * x0 + 0.5, 2 * y0 + 0.5]
-            sleeve = cv2.dilate((sub == _T).view(np.uint8), _DILATE3) > 0
-            touch = np.nonzero(skin & sleeve)
-            if len(touch[0]) >= 2:
-                nt = touch[0].size                # the means as np.mean takes them: sum / count
-                root = np.array([touch[1].sum() / nt + x0, touch[0].sum() / nt + y0]) * 2 + 0.5
+            # this blob's own pixels (from the one components pass): their centres (x, y) at full
+            # resolution, and those touching the sleeve: count, sums of columns and rows in the window
+            P, nt, sx, sy = blob_pixels(cc, bb.label, L, _T, x0, y0, x1, y1)
+            if nt >= 2:                           # the means as np.mean takes them: sum / count
+                root = np.array([sx / nt + x0, sy / nt + y0]) * 2 + 0.5
             else:
                 tm = cv2.moments((L == _T).view(np.uint8), binaryImage=True)
                 root = np.array([tm["m10"] / tm["m00"], tm["m01"] / tm["m00"]]) * 2 if tm["m00"] > 0 else bb.centroid + [0, -40]

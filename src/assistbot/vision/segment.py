@@ -75,8 +75,11 @@ class ColourTable:
             self.half(np.zeros((2, 2, 3), np.uint8), ((1, 1),), 1, np.zeros((1, 2)), np.ones((1, 1), np.uint8))
             for img in (np.zeros((2, 2, 3), np.uint8), np.zeros((2, 2, 3), np.uint8)[:, :1]):   # whole, strided
                 lab, mask = self.region(img, np.zeros(256, np.uint8))
+                masked_saturation(img, mask)
             silhouette(mask)
             first_row_over(lab, mask, 1, 0, 1)
+            blob_pixels(np.zeros((2, 2), np.int32), 1, lab, 1, 0, 0, 2, 2)
+            count_near(lab, mask, 1, 1)
 
     def labels(self, img: np.ndarray, step: int = 1) -> np.ndarray:
         """(H/step, W/step) uint8 labels of an RGB image (every `step`-th pixel)."""
@@ -150,6 +153,41 @@ def first_row_over(lab: np.ndarray, mask: np.ndarray, part: int, lo: int, hi: in
     rows = np.flatnonzero(((lab[:hi + 1] == part) & mask.any(axis=0)).any(axis=1))
     rows = rows[rows >= lo]
     return int(rows[0]) if rows.size else -1
+
+
+def blob_pixels(comp: np.ndarray, label: int, lab: np.ndarray, near: int, x0: int, y0: int, x1: int,
+                y1: int) -> tuple[np.ndarray, int, int, int]:
+    """In the window [y0, y1) x [x0, x1) of a half-resolution image: the centres (x, y) at full
+    resolution of component ``label``'s pixels (``comp``: the components' label image), row by row,
+    and of those of them next to (3x3, within the window) a pixel labelled ``near`` in ``lab``: the
+    count and the sums of their window columns and rows.  Compiled with numba (see `ColourTable.half`)."""
+    if _kernels is not None:
+        P, n, sx, sy = _kernels.blob_pixels(comp, label, lab, near, x0, y0, x1, y1)
+        return P, int(n), int(sx), int(sy)
+    own = comp[y0:y1, x0:x1] == label
+    # small integers and halves: exact in any order
+    P = np.argwhere(own)[:, ::-1] * 2.0 + [2 * x0 + 0.5, 2 * y0 + 0.5]
+    touch = np.nonzero(own & (cv2.dilate((lab[y0:y1, x0:x1] == near).view(np.uint8), np.ones((3, 3), np.uint8)) > 0))
+    return P, int(touch[0].size), int(touch[1].sum()), int(touch[0].sum())
+
+
+def count_near(lab: np.ndarray, mask: np.ndarray, part: int, r: int) -> int:
+    """How many pixels labelled ``part`` lie in the (bool) mask dilated by a (2r+1)^2 box.  Compiled
+    with numba (see `ColourTable.half`)."""
+    if _kernels is not None and mask.dtype == np.bool_:
+        return int(_kernels.count_near(lab, mask, part, r))
+    near = cv2.dilate(mask.view(np.uint8), np.ones((2 * r + 1, 2 * r + 1), np.uint8)) > 0
+    return int(np.count_nonzero(near & (lab == part)))
+
+
+def masked_saturation(img: np.ndarray, mask: np.ndarray) -> np.ndarray:
+    """HSV saturation (max - min) / max(max, 1) of an RGB image's pixels, float32, 0 off the (bool) mask.
+    Compiled with numba (see `ColourTable.half`): the same float32 operations."""
+    if _kernels is not None and img.dtype == np.uint8 and mask.dtype == np.bool_:
+        return _kernels.masked_saturation(img, mask)
+    r, g, b = cv2.split(img)
+    mx = cv2.max(cv2.max(r, g), b).astype(np.float32)
+    return (mx - cv2.min(cv2.min(r, g), b)) / np.maximum(mx, 1.0) * mask
 
 
 def cover(spots: np.ndarray, stamp: np.ndarray, shape: tuple[int, int]) -> np.ndarray:
