@@ -24,7 +24,8 @@ def label_half(img, lut, spots, stamp, clear, lo, hi):
     table of the colour's top 6 bits per channel; label ``clear`` removed (0) where the `stamp` (a
     structuring element, odd size, anchor at its centre) dilated around the points ``spots``
     (half-resolution (u, v) floats; non-finite ones and those truncated outside the image skipped,
-    as the numpy path does) covers it; and one bool mask per label range [lo[k], hi[k]]."""
+    as the numpy path does) covers it; one bool mask per label range [lo[k], hi[k]], and each mask's
+    bounding box (x, y, w, h; as cv2.boundingRect, 0s if empty)."""
     H2, W2 = img.shape[0] // 2, img.shape[1] // 2
     lab = np.empty((H2, W2), np.uint8)
     flat = img.reshape(-1)
@@ -53,12 +54,25 @@ def label_half(img, lut, spots, stamp, clear, lo, hi):
                     if stamp[i, j] and 0 <= xx < W2 and lab[yy, xx] == clear:
                         lab[yy, xx] = 0
     masks = np.empty((lo.size, H2, W2), np.bool_)
+    boxes = np.zeros((lo.size, 4), np.intp)
     for k in range(lo.size):
         first, span = lo[k], np.uint8(hi[k] - lo[k])
+        x0, y0, x1, y1 = W2, -1, -1, -1
         for y in range(H2):
+            r0, r1 = W2, -1
             for x in range(W2):
-                masks[k, y, x] = np.uint8(lab[y, x] - first) <= span     # first <= label <= hi[k]
-    return lab, masks
+                inside = np.uint8(lab[y, x] - first) <= span     # first <= label <= hi[k]
+                masks[k, y, x] = inside
+                if inside:
+                    r0 = min(r0, x)
+                    r1 = x
+            if r1 >= 0:
+                y0 = y if y0 < 0 else y0
+                y1 = y
+                x0, x1 = min(x0, r0), max(x1, r1)
+        if y1 >= 0:
+            boxes[k, 0], boxes[k, 1], boxes[k, 2], boxes[k, 3] = x0, y0, x1 - x0 + 1, y1 - y0 + 1
+    return lab, masks, boxes
 
 
 @numba.njit(cache=True, nogil=True)

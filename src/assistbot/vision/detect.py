@@ -235,12 +235,12 @@ class Detector:
 
     def __call__(self, left: np.ndarray, right: np.ndarray, cams: tuple[CameraModel, CameraModel]) -> Detections:
         imgs = (left, right)
-        # half-resolution labels without the static skin, and the masks of bottle, glass (or liquid) and skin
+        # half-resolution labels without the static skin, the masks of bottle, glass (or liquid) and skin, their boxes
         spots = [self.static_spots(cam) if len(self.static_cells) else None for cam in cams]
-        lab, masks = zip(*(self.table.half(im, _BLOB_LABELS, _K, sp, self._margin) for im, sp in zip(imgs, spots)))
+        lab, masks, boxes = zip(*(self.table.half(im, _BLOB_LABELS, _K, sp, self._margin) for im, sp in zip(imgs, spots)))
         det = Detections(labels=lab)
         # the blobs of each part in each camera (a right-image part only where the left has one to pair with)
-        found, views = components_each(masks, ("bottle", "glass", "skin"), (2, 2, 6), pairs_only=True, views_of=(2,))
+        found, views = components_each(masks, ("bottle", "glass", "skin"), (2, 2, 6), pairs_only=True, views_of=(2,), boxes=boxes)
         blobs = [{"bottle": f[0], "glass": f[1], "skin": (f[2], v[2])} for f, v in zip(found, views)]
         for name in ("bottle", "glass"):
             det.objects[name] = self._object(name, blobs, imgs, cams)

@@ -102,9 +102,10 @@ class ColourTable:
         return lab, np.take(part, lab).view(bool)
 
     def half(self, img: np.ndarray, ranges: tuple[tuple[int, int], ...], clear: int = 0, spots: np.ndarray | None = None,
-             stamp: np.ndarray | None = None) -> tuple[np.ndarray, list[np.ndarray]]:
+             stamp: np.ndarray | None = None) -> tuple[np.ndarray, list[np.ndarray], list[tuple[int, int, int, int]]]:
         """``labels(img, 2)`` with label ``clear`` removed (0) where `cover` of the half-resolution points
-        ``spots`` (u, v) by ``stamp`` lies, and a mask per label range (lo, hi) of the result (bool; uint8 0/255 on the numpy path).
+        ``spots`` (u, v) by ``stamp`` lies, a mask per label range (lo, hi) of the result (bool; uint8 0/255
+        on the numpy path), and each mask's bounding box (as cv2.boundingRect).
 
         One compiled pass over the image when numba is there (see `_kernels`): the image comes fresh
         from the renderer, which has evicted the CPU caches, so each of the numpy path's passes (resize,
@@ -117,12 +118,13 @@ class ColourTable:
                 and W % 2 == 0 and H > 0 and W > 0 and img.flags.c_contiguous):
             lo = np.array([r[0] for r in ranges], np.uint8)
             hi = np.array([r[1] for r in ranges], np.uint8)
-            lab, masks = _kernels.label_half(img, self.lut, np.ascontiguousarray(spots, np.float64), stamp, clear, lo, hi)
-            return lab, list(masks)
+            lab, masks, boxes = _kernels.label_half(img, self.lut, np.ascontiguousarray(spots, np.float64), stamp, clear, lo, hi)
+            return lab, list(masks), [tuple(b) for b in boxes.tolist()]
         lab = self.labels(img, 2)
         if len(spots):
             lab[cover(spots, stamp, lab.shape) & (lab == clear)] = 0
-        return lab, [cv2.inRange(lab, lo, hi) for lo, hi in ranges]     # 0/255: components take nonzero
+        masks = [cv2.inRange(lab, lo, hi) for lo, hi in ranges]     # 0/255: components take nonzero
+        return lab, masks, [cv2.boundingRect(m) for m in masks]
 
 
 def silhouette(mask: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
@@ -209,7 +211,7 @@ def components(mask: np.ndarray, part: str, keep: int = 4, scale: int = 2) -> tu
 
 
 def components_each(masks: list[list[np.ndarray]], parts: tuple[str, ...], keep: tuple[int, ...], scale: int = 2,
-                     pairs_only: bool = False, views_of: tuple[int, ...] | None = None):
+                     pairs_only: bool = False, views_of: tuple[int, ...] | None = None, boxes=None):
     """Connected components of several (half-resolution) masks: masks[camera][k] (bool, or uint8 with
     nonzero pixels in).  Returns, per camera
     and part, the `keep[k]` largest blobs (full-resolution pixels; ``Blob.label`` indexes the views) and
@@ -224,7 +226,8 @@ def components_each(masks: list[list[np.ndarray]], parts: tuple[str, ...], keep:
     their exact integer sums, as OpenCV divides them).  An empty mask, and with ``pairs_only`` a
     later camera's mask of a part the first camera has no blob of (nothing to pair it with), get no
     blobs and a zero view without the call.  ``views_of``: the mask indices k whose label images the caller
-    reads (None: all); the others' views are None (no whole-mask label image is made for them)."""
+    reads (None: all); the others' views are None (no whole-mask label image is made for them).
+    ``boxes``: the masks' bounding boxes (boxes[camera][k], as cv2.boundingRect) when known already."""
     out: list[list[list[Blob]]] = []
     views = []
     for c, cm in enumerate(masks):
@@ -234,7 +237,7 @@ def components_each(masks: list[list[np.ndarray]], parts: tuple[str, ...], keep:
             if pairs_only and c > 0 and not out[0][k]:
                 bw = 0
             else:
-                bx, by, bw, bh = cv2.boundingRect(m8)
+                bx, by, bw, bh = boxes[c][k] if boxes is not None else cv2.boundingRect(m8)
             want = views_of is None or k in views_of
             if bw == 0:
                 oc.append([])
