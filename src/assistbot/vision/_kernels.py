@@ -18,9 +18,15 @@ import numba
 import numpy as np
 
 
+@numba.njit(cache=True, nogil=True, inline="always")
+def _code(px):
+    """A pixel's (r, g, b) top 6 bits each, packed r << 12 | g << 6 | b: its index in the 64^3 table."""
+    return ((np.uint32(px[0]) & 0xFC) << 10) | ((np.uint32(px[1]) & 0xFC) << 4) | (np.uint32(px[2]) >> 2)
+
+
 @numba.njit(cache=True, nogil=True)
 def label_half(img, lut, spots, stamp, clear, lo, hi):
-    """Labels of every 2nd pixel of every 2nd row of a contiguous RGB image (H, W even), by the 64^3
+    """Labels of every 2nd pixel of every 2nd row of an RGB image (H, W even), by the 64^3
     table of the colour's top 6 bits per channel; label ``clear`` removed (0) where the `stamp` (a
     structuring element, odd size, anchor at its centre) dilated around the points ``spots``
     (half-resolution (u, v) floats; non-finite ones and those truncated outside the image skipped,
@@ -28,13 +34,10 @@ def label_half(img, lut, spots, stamp, clear, lo, hi):
     bounding box (x, y, w, h; as cv2.boundingRect, 0s if empty)."""
     H2, W2 = img.shape[0] // 2, img.shape[1] // 2
     lab = np.empty((H2, W2), np.uint8)
-    flat = img.reshape(-1)
-    row = 2 * img.shape[1] * 3           # bytes of two image rows
     for y in range(H2):
-        base = y * row
+        row = img[2 * y]
         for x in range(W2):
-            o = base + 6 * x
-            lab[y, x] = lut[((np.intp(flat[o]) >> 2) << 12) | ((np.intp(flat[o + 1]) >> 2) << 6) | (np.intp(flat[o + 2]) >> 2)]
+            lab[y, x] = lut[_code(row[2 * x])]
     # the dilation of the points by the stamp: pixel (y', x') is covered where stamp[i, j] and a point
     # sits at (y' + i - ay, x' + j - ax); clearing is idempotent, so each point clears its own cover
     sh, sw = stamp.shape
@@ -57,16 +60,20 @@ def label_half(img, lut, spots, stamp, clear, lo, hi):
     boxes = np.zeros((lo.size, 4), np.intp)
     for k in range(lo.size):
         first, span = lo[k], np.uint8(hi[k] - lo[k])
+        m = masks[k]
         x0, y0, x1, y1 = W2, -1, -1, -1
         for y in range(H2):
-            r0, r1 = W2, -1
+            some = False
             for x in range(W2):
                 inside = np.uint8(lab[y, x] - first) <= span     # first <= label <= hi[k]
-                masks[k, y, x] = inside
-                if inside:
-                    r0 = min(r0, x)
-                    r1 = x
-            if r1 >= 0:
+                m[y, x] = inside
+                some |= inside
+            if some:   # the row's first and last pixel (a branch-free loop above, so it vectorises)
+                r0, r1 = 0, W2 - 1
+                while not m[y, r0]:
+                    r0 += 1
+                while not m[y, r1]:
+                    r1 -= 1
                 y0 = y if y0 < 0 else y0
                 y1 = y
                 x0, x1 = min(x0, r0), max(x1, r1)
@@ -84,7 +91,7 @@ def label_region(img, lut, part):
     mask = np.empty((H, W), np.bool_)
     for y in range(H):
         for x in range(W):
-            c = lut[((np.intp(img[y, x, 0]) >> 2) << 12) | ((np.intp(img[y, x, 1]) >> 2) << 6) | (np.intp(img[y, x, 2]) >> 2)]
+            c = lut[_code(img[y, x])]
             lab[y, x] = c
             mask[y, x] = part[c] != 0
     return lab, mask
