@@ -99,14 +99,17 @@ def label_region(img, lut, part):
 
 @numba.njit(cache=True, nogil=True)
 def silhouette(mask):
-    """A mask's rows that have pixels, their first and last pixel's columns, and the extents
-    [x, y, w, h (cv2.boundingRect), first and last column of its bottom two rows, of its top two
-    rows] (all 0 for an empty mask)."""
+    """A mask's rows that have pixels, their first and last pixel's columns, the extents [x, y, w, h
+    (cv2.boundingRect), first and last column of its bottom two rows, of its top two rows] (all 0 for
+    an empty mask), and its moments [m00, m10, m01, mu20, mu11, mu02] as cv2.moments(binaryImage=True)
+    gives them: the raw ones are sums of small integers (exact in float64, in any order), the central
+    ones computed from them by OpenCV's own formulas (completeMomentState)."""
     H, W = mask.shape
     rows = np.empty(H, np.intp)
     first = np.empty(H, np.intp)
     last = np.empty(H, np.intp)
     n = 0
+    s00, s10, s01, s20, s11, s02 = 0, 0, 0, 0, 0, 0
     for y in range(H):
         f = -1
         for x in range(W):
@@ -122,6 +125,18 @@ def silhouette(mask):
                 break
         rows[n], first[n], last[n] = y, f, l
         n += 1
+        c, sx, sxx = 0, 0, 0
+        for x in range(f, l + 1):
+            if mask[y, x]:
+                c += 1
+                sx += x
+                sxx += x * x
+        s00 += c
+        s10 += sx
+        s01 += y * c
+        s20 += sxx
+        s11 += y * sx
+        s02 += y * y * c
     ext = np.zeros(8, np.intp)
     if n:
         top, bot = rows[0], rows[n - 1]
@@ -136,7 +151,25 @@ def silhouette(mask):
                 ext[6], ext[7] = min(ext[6], first[i]), max(ext[7], last[i])
         ext[1], ext[3] = top, bot - top + 1
         ext[2] = ext[2] - ext[0] + 1
-    return rows[:n], first[:n], last[:n], ext
+    m00, m10, m01 = float(s00), float(s10), float(s01)
+    cx, cy = 0.0, 0.0
+    if abs(m00) > 2.220446049250313e-16:   # DBL_EPSILON
+        inv = 1.0 / m00
+        cx, cy = m10 * inv, m01 * inv
+    mom = np.empty(6, np.float64)
+    mom[0], mom[1], mom[2] = m00, m10, m01
+    mom[3] = float(s20) - m10 * cx
+    mom[4] = float(s11) - m10 * cy
+    mom[5] = float(s02) - m01 * cy
+    return rows[:n], first[:n], last[:n], ext, mom
+
+
+@numba.njit(cache=True, nogil=True)
+def label_silhouette(img, lut, part):
+    """`label_region` and `silhouette` of its mask, in one call."""
+    lab, mask = label_region(img, lut, part)
+    rows, first, last, ext, mom = silhouette(mask)
+    return lab, mask, rows, first, last, ext, mom
 
 
 @numba.njit(cache=True, nogil=True)

@@ -36,7 +36,7 @@ cv2.setNumThreads(1)   # per-frame work on small images: OpenCV's thread pool co
 
 from assistbot.vision.camera import CameraModel, expected_boxes, on_plane, triangulate
 from assistbot.vision.segment import (LABEL, Blob, ColourTable, blob_pixels, components_each, count_near, cover,
-                                      first_row_over, masked_saturation, silhouette)
+                                      first_row_over, masked_saturation)
 from assistbot.world import layout
 
 MIN_EXTENT = 0.82
@@ -160,11 +160,12 @@ class _Roi:
         self.x0, self.y0 = max(0, x - 4), max(0, y - pad_top)
         x1, y1 = min(W, x + w + 4), min(H, y + h + 4)
         self.img = img[self.y0:y1, self.x0:x1]
-        self.lab, m = table.region(self.img, _PART_LUT[parts])     # the labels, and where they are one of the parts
+        # the labels, where they are one of the parts (the silhouette), its rows' first and last pixels
+        # (for `axis`), its extents and moments
+        self.lab, m, *rows, ext, mom = table.region_silhouette(self.img, _PART_LUT[parts])
         self.mask = m
-        # its rows' first and last pixels (for `axis`) and the silhouette's extent
-        self._rows = silhouette(m)
-        _, by, bw, bh, bl, br, tl, tr = self._rows[3].tolist()
+        self._rows = rows
+        _, by, bw, bh, bl, br, tl, tr = ext.tolist()
         self.ok = bw > 0
         if not self.ok:
             return
@@ -174,12 +175,11 @@ class _Roi:
         # the bottom (top) two rows' leftmost and rightmost pixels
         self.bottom = np.array([self.x0 + bl + 0.5 * (br - bl), self.y0 + self.bot_r + 0.5])
         self.top = np.array([self.x0 + tl + 0.5 * (tr - tl), self.y0 + self.top_r - 0.5])
-        mo = cv2.moments(m.view(np.uint8), binaryImage=True)
-        n = mo["m00"]
-        self.centroid = np.array([mo["m10"] / n + self.x0 + 0.5, mo["m01"] / n + self.y0 + 0.5])
+        n, m10, m01, mu20, mu11, mu02 = mom.tolist()     # as cv2.moments(binaryImage=True) gives them
+        self.centroid = np.array([m10 / n + self.x0 + 0.5, m01 / n + self.y0 + 0.5])
         self.tilt = 0.0
         if n > 3:   # the silhouette's main axis from its central moments
-            a, b, c = mo["mu20"] / n, mo["mu11"] / n, mo["mu02"] / n
+            a, b, c = mu20 / n, mu11 / n, mu02 / n
             root = math.sqrt(max(0.0, 0.25 * (a - c) ** 2 + b * b))
             l1, l0 = 0.5 * (a + c) + root, 0.5 * (a + c) - root
             if l1 > 1.5 * l0:   # elongated: the angle of the main axis (b, l1 - a) from the image vertical
@@ -215,7 +215,7 @@ class _Roi:
         top, bottom or part of a side (which the silhouette's centroid is not).  Computed once."""
         if self._axis is not None:
             return self._axis
-        rows, first, last, _ = self._rows
+        rows, first, last = self._rows
         width = last - first + 1
         full = _pct(width, 80)
         ok = np.abs(width - full) <= max(1.5, 0.12 * full)

@@ -75,6 +75,7 @@ class ColourTable:
             self.half(np.zeros((2, 2, 3), np.uint8), ((1, 1),), 1, np.zeros((1, 2)), np.ones((1, 1), np.uint8))
             for img in (np.zeros((2, 2, 3), np.uint8), np.zeros((2, 2, 3), np.uint8)[:, :1]):   # whole, strided
                 lab, mask = self.region(img, np.zeros(256, np.uint8))
+                self.region_silhouette(img, np.zeros(256, np.uint8))
                 masked_saturation(img, mask)
             silhouette(mask)
             first_row_over(lab, mask, 1, 0, 1)
@@ -100,6 +101,14 @@ class ColourTable:
             return _kernels.label_region(img, self.lut, part)
         lab = self.labels(img)
         return lab, np.take(part, lab).view(bool)
+
+    def region_silhouette(self, img: np.ndarray, part: np.ndarray) -> tuple:
+        """`region` and `silhouette` of its mask: (labels, mask, rows, first, last, extents, moments), in
+        one compiled call with numba."""
+        if _kernels is not None and img.dtype == np.uint8 and img.ndim == 3 and img.shape[2] == 3:
+            return _kernels.label_silhouette(img, self.lut, part)
+        lab, mask = self.region(img, part)
+        return (lab, mask, *silhouette(mask))
 
     def half(self, img: np.ndarray, ranges: tuple[tuple[int, int], ...], clear: int = 0, spots: np.ndarray | None = None,
              stamp: np.ndarray | None = None) -> tuple[np.ndarray, list[np.ndarray], list[tuple[int, int, int, int]]]:
@@ -127,10 +136,11 @@ class ColourTable:
         return lab, masks, [cv2.boundingRect(m) for m in masks]
 
 
-def silhouette(mask: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
-    """A (bool) mask's rows that have pixels, their first and last pixel's columns (intp), and its
-    extents (intp): x, y, w, h (as cv2.boundingRect), the first and last column of its bottom two rows
-    and of its top two rows (all 0 if empty).  One compiled pass with numba (see `ColourTable.half`)."""
+def silhouette(mask: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """A (bool) mask's rows that have pixels, their first and last pixel's columns (intp), its extents
+    (intp): x, y, w, h (as cv2.boundingRect), the first and last column of its bottom two rows and of
+    its top two rows (all 0 if empty), and its moments m00, m10, m01, mu20, mu11, mu02 (float64, as
+    cv2.moments(binaryImage=True)).  One compiled pass with numba (see `ColourTable.half`)."""
     if _kernels is not None and mask.dtype == np.bool_ and mask.ndim == 2:
         return _kernels.silhouette(mask)
     m8 = mask.view(np.uint8)
@@ -138,13 +148,15 @@ def silhouette(mask: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray, np
     sub = mask[rows]
     first = sub.argmax(axis=1)
     last = mask.shape[1] - 1 - sub[:, ::-1].argmax(axis=1)
+    mo = cv2.moments(m8, binaryImage=True)
+    mom = np.array([mo[k] for k in ("m00", "m10", "m01", "mu20", "mu11", "mu02")])
     x, y, w, h = cv2.boundingRect(m8)
     if w == 0:
-        return rows, first, last, np.zeros(8, np.intp)
+        return rows, first, last, np.zeros(8, np.intp), mom
     bot = y + h - 1
     bx, _, bw, _ = cv2.boundingRect(m8[max(y, bot - 1):bot + 1])
     tx, _, tw, _ = cv2.boundingRect(m8[y:y + 2])
-    return rows, first, last, np.array([x, y, w, h, bx, bx + bw - 1, tx, tx + tw - 1], np.intp)
+    return rows, first, last, np.array([x, y, w, h, bx, bx + bw - 1, tx, tx + tw - 1], np.intp), mom
 
 
 def first_row_over(lab: np.ndarray, mask: np.ndarray, part: int, lo: int, hi: int) -> int:
