@@ -189,23 +189,31 @@ def first_row_over(lab, mask, part, lo, hi):
     return -1
 
 
+@numba.njit(cache=True, nogil=True, inline="always")
+def _at(comp, ox, oy, x, y):
+    """comp's value at image pixel (x, y), comp placed at (ox, oy); 0 outside it."""
+    if 0 <= y - oy < comp.shape[0] and 0 <= x - ox < comp.shape[1]:
+        return comp[y - oy, x - ox]
+    return 0
+
+
 @numba.njit(cache=True, nogil=True)
-def blob_pixels(comp, label, lab, near_label, x0, y0, x1, y1):
+def blob_pixels(comp, ox, oy, label, lab, near_label, x0, y0, x1, y1):
     """In the window [y0, y1) x [x0, x1) of a half-resolution image: the centres (x, y), at full
-    resolution, of the pixels of component ``label`` (of the components' label image ``comp``) in
-    row-major order, and of those next to (3x3, within the window) a pixel labelled ``near_label``
+    resolution, of the pixels of component ``label`` (of the components' label image ``comp``, placed
+    at column ox, row oy of the image; 0 outside it) in row-major order, and of those next to (3x3, within the window) a pixel labelled ``near_label``
     in ``lab``: their count and the sums of their window columns and rows."""
     n = 0
     for y in range(y0, y1):
         for x in range(x0, x1):
-            if comp[y, x] == label:
+            if _at(comp, ox, oy, x, y) == label:
                 n += 1
     P = np.empty((n, 2), np.float64)
     i = 0
     touch, sx, sy = 0, 0, 0
     for y in range(y0, y1):
         for x in range(x0, x1):
-            if comp[y, x] != label:
+            if _at(comp, ox, oy, x, y) != label:
                 continue
             P[i, 0] = (x - x0) * 2.0 + (2 * x0 + 0.5)
             P[i, 1] = (y - y0) * 2.0 + (2 * y0 + 0.5)
