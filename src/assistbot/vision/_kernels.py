@@ -262,3 +262,85 @@ def masked_saturation(img, mask):
                 mx = np.float32(max(r, g, b))
                 out[y, x] = (mx - np.float32(min(r, g, b))) / max(mx, np.float32(1.0))
     return out
+
+
+@numba.njit(cache=True, nogil=True, inline="always")
+def _root(parent, i):
+    while parent[i] != i:
+        parent[i] = parent[parent[i]]
+        i = parent[i]
+    return i
+
+
+@numba.njit(cache=True, nogil=True)
+def components8(mask, x0, y0, x1, y1):
+    """8-connected components of mask[y0:y1, x0:x1] (x0, y0 even), numbered as OpenCV's Grana (BBDT)
+    algorithm numbers them: in the order of each component's first 2x2 block in a raster scan of the
+    blocks (a 2x2 block's pixels are all 8-connected, so each block is one component's; its first block
+    makes the component's smallest provisional label, and OpenCV numbers the label sets' roots, the
+    smallest, in order).  Returns the labels (int32, 0 background), per label 0..n the statistics
+    [left, top, width, height, area] (int32; row 0, the background's, left at 0) and the sums of the
+    pixels' x and y (int64), all in the crop's coordinates."""
+    h, w = y1 - y0, x1 - x0
+    lab = np.zeros((h, w), np.int32)
+    parent = np.zeros(h * w + 1, np.int32)
+    key = np.zeros(h * w + 1, np.int64)
+    bw = (w + 1) // 2
+    nl = 0
+    for y in range(h):
+        for x in range(w):
+            if not mask[y0 + y, x0 + x]:
+                continue
+            k = (y >> 1) * bw + (x >> 1)
+            best = 0
+            for dy, dx in ((0, -1), (-1, -1), (-1, 0), (-1, 1)):
+                yy, xx = y + dy, x + dx
+                if yy >= 0 and 0 <= xx < w and lab[yy, xx]:
+                    r = _root(parent, lab[yy, xx])
+                    if best == 0 or r < best:
+                        best = r
+            if best == 0:
+                nl += 1
+                parent[nl] = nl
+                key[nl] = k
+                best = nl
+            else:
+                for dy, dx in ((0, -1), (-1, -1), (-1, 0), (-1, 1)):
+                    yy, xx = y + dy, x + dx
+                    if yy >= 0 and 0 <= xx < w and lab[yy, xx]:
+                        r = _root(parent, lab[yy, xx])
+                        if r != best:
+                            parent[r] = best
+                            key[best] = min(key[best], key[r])
+                key[best] = min(key[best], k)
+            lab[y, x] = best
+    # the roots in the order of their first block
+    n = 0
+    roots = np.empty(nl, np.int32)
+    keys = np.empty(nl, np.int64)
+    for i in range(1, nl + 1):
+        if _root(parent, i) == i:
+            roots[n], keys[n] = i, key[i]
+            n += 1
+    order = np.argsort(keys[:n], kind="mergesort")
+    final = np.zeros(nl + 1, np.int32)
+    for j in range(n):
+        final[roots[order[j]]] = j + 1
+    stats = np.zeros((n + 1, 5), np.int32)
+    sums = np.zeros((n + 1, 2), np.int64)
+    lo = np.full((n + 1, 2), 1 << 30, np.int64)
+    hi = np.full((n + 1, 2), -1, np.int64)
+    for y in range(h):
+        for x in range(w):
+            if lab[y, x]:
+                f = final[_root(parent, lab[y, x])]
+                lab[y, x] = f
+                stats[f, 4] += 1
+                sums[f, 0] += x
+                sums[f, 1] += y
+                lo[f, 0], lo[f, 1] = min(lo[f, 0], x), min(lo[f, 1], y)
+                hi[f, 0], hi[f, 1] = max(hi[f, 0], x), max(hi[f, 1], y)
+    for f in range(1, n + 1):
+        stats[f, 0], stats[f, 1] = lo[f, 0], lo[f, 1]
+        stats[f, 2], stats[f, 3] = hi[f, 0] - lo[f, 0] + 1, hi[f, 1] - lo[f, 1] + 1
+    return lab, stats, sums

@@ -82,6 +82,7 @@ class ColourTable:
             first_row_over(lab, mask, 1, 0, 1)
             blob_pixels((np.zeros((2, 2), np.int32), 0, 0), 1, lab, 1, 0, 0, 2, 2)
             count_near(lab, mask, 1, 1)
+            _kernels.components8(mask, 0, 0, mask.shape[1], mask.shape[0])
 
     def labels(self, img: np.ndarray, step: int = 1) -> np.ndarray:
         """(H/step, W/step) uint8 labels of an RGB image (every `step`-th pixel)."""
@@ -265,7 +266,14 @@ def components_each(masks: list[list[np.ndarray]], parts: tuple[str, ...], keep:
                 continue
             x0, y0 = bx & ~1, by & ~1
             x1, y1 = bx + bw, by + bh
-            n, sub, stats, cents = cv2.connectedComponentsWithStatsWithAlgorithm(m8[y0:y1, x0:x1], 8, cv2.CV_32S, cv2.CCL_GRANA)
+            if _kernels is not None and m.dtype == np.bool_:
+                # the same labels, statistics and (as exact sums) centroids as OpenCV's, compiled
+                sub, stats, sums = _kernels.components8(m, x0, y0, x1, y1)
+                n = len(stats)
+            else:
+                n, sub, stats, cents = cv2.connectedComponentsWithStatsWithAlgorithm(m8[y0:y1, x0:x1], 8, cv2.CV_32S, cv2.CCL_GRANA)
+                # the pixel sums of this crop (exact integers) from OpenCV's centroids (sum / area)
+                sums = np.round(cents * stats[:, cv2.CC_STAT_AREA:cv2.CC_STAT_AREA + 1])
             vc.append((sub, x0, y0) if want else None)
             res: list[Blob] = []
             if n > 1:
@@ -276,10 +284,10 @@ def components_each(masks: list[list[np.ndarray]], parts: tuple[str, ...], keep:
                 for i in big:
                     x, y, w, h = stats[i, :4].tolist()
                     a = float(areas[i])
-                    cx, cy = cents[i].tolist()
-                    # the pixel sums of this crop (exact integers), moved by the crop's offset
-                    cx = (round(cx * a) + x0 * a) / a
-                    cy = (round(cy * a) + y0 * a) / a
+                    sx, sy = sums[i].tolist()
+                    # the pixel sums moved by the crop's offset, over the area (as OpenCV divides them)
+                    cx = (sx + x0 * a) / a
+                    cy = (sy + y0 * a) / a
                     res.append(Blob(parts[k], a * scale * scale, np.array([(cx + 0.5) * scale - 0.5, (cy + 0.5) * scale - 0.5]),
                                     ((x + x0) * scale, (y + y0) * scale, w * scale, h * scale), i))
             oc.append(res)
