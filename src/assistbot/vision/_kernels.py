@@ -30,8 +30,8 @@ def label_half(img, lut, spots, stamp, clear, lo, hi):
     table of the colour's top 6 bits per channel; label ``clear`` removed (0) where the `stamp` (a
     structuring element, odd size, anchor at its centre) dilated around the points ``spots``
     (half-resolution (u, v) floats; non-finite ones and those truncated outside the image skipped,
-    as the numpy path does) covers it; one bool mask per label range [lo[k], hi[k]], and each mask's
-    bounding box (x, y, w, h; as cv2.boundingRect, 0s if empty)."""
+    as the numpy path does) covers it; and the bounding box (x, y, w, h; as cv2.boundingRect, 0s if
+    empty) of the pixels of each label range [lo[k], hi[k]]."""
     H2, W2 = img.shape[0] // 2, img.shape[1] // 2
     lab = np.empty((H2, W2), np.uint8)
     for y in range(H2):
@@ -56,30 +56,26 @@ def label_half(img, lut, spots, stamp, clear, lo, hi):
                     xx = x - j + ax
                     if stamp[i, j] and 0 <= xx < W2 and lab[yy, xx] == clear:
                         lab[yy, xx] = 0
-    masks = np.empty((lo.size, H2, W2), np.bool_)
     boxes = np.zeros((lo.size, 4), np.intp)
     for k in range(lo.size):
         first, span = lo[k], np.uint8(hi[k] - lo[k])
-        m = masks[k]
         x0, y0, x1, y1 = W2, -1, -1, -1
         for y in range(H2):
             some = False
             for x in range(W2):
-                inside = np.uint8(lab[y, x] - first) <= span     # first <= label <= hi[k]
-                m[y, x] = inside
-                some |= inside
-            if some:   # the row's first and last pixel (a branch-free loop above, so it vectorises)
+                some |= np.uint8(lab[y, x] - first) <= span     # first <= label <= hi[k] (branch-free: vectorises)
+            if some:   # the row's first and last pixel in the range
                 r0, r1 = 0, W2 - 1
-                while not m[y, r0]:
+                while np.uint8(lab[y, r0] - first) > span:
                     r0 += 1
-                while not m[y, r1]:
+                while np.uint8(lab[y, r1] - first) > span:
                     r1 -= 1
                 y0 = y if y0 < 0 else y0
                 y1 = y
                 x0, x1 = min(x0, r0), max(x1, r1)
         if y1 >= 0:
             boxes[k, 0], boxes[k, 1], boxes[k, 2], boxes[k, 3] = x0, y0, x1 - x0 + 1, y1 - y0 + 1
-    return lab, masks, boxes
+    return lab, boxes
 
 
 @numba.njit(cache=True, nogil=True)
@@ -273,8 +269,9 @@ def _root(parent, i):
 
 
 @numba.njit(cache=True, nogil=True)
-def components8(mask, x0, y0, x1, y1):
-    """8-connected components of mask[y0:y1, x0:x1] (x0, y0 even), numbered as OpenCV's Grana (BBDT)
+def components8(src, lo, hi, x0, y0, x1, y1):
+    """8-connected components of the mask lo <= src <= hi in [y0, y1) x [x0, x1) (x0, y0 even), numbered
+    as OpenCV's Grana (BBDT)
     algorithm numbers them: in the order of each component's first 2x2 block in a raster scan of the
     blocks (a 2x2 block's pixels are all 8-connected, so each block is one component's; its first block
     makes the component's smallest provisional label, and OpenCV numbers the label sets' roots, the
@@ -291,7 +288,8 @@ def components8(mask, x0, y0, x1, y1):
     nl = 0
     for y in range(h):
         for x in range(w):
-            if not mask[y0 + y, x0 + x]:
+            v = src[y0 + y, x0 + x]
+            if v < lo or v > hi:
                 continue
             k = (y >> 1) * bw + (x >> 1)
             best = 0

@@ -56,7 +56,7 @@ STATIC_SKIN_R = 0.08       # m: skin this close to a calibrated static spot is n
 STATIC_MARGIN = 2          # half-resolution px (~1-2 cm at the table) around the static cells' projections
 HAND_REACH = 0.10          # m: hand crop half-size
 _B, _S, _G, _L, _K, _T = (LABEL[p] for p in ("bottle", "stopper", "glass", "liquid", "skin", "shirt"))
-assert _L == _G + 1      # the glass mask is one inRange over both labels
+assert _L == _G + 1      # the glass mask is one label range over both labels
 #: the label ranges of the blob masks: bottle, glass or liquid (consecutive labels), skin
 _BLOB_LABELS = ((_B, _B), (_G, _L), (_K, _K))
 #: label -> 1 if it is one of these parts, per part set used for a silhouette, and for the hand's crop

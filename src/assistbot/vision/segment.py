@@ -32,6 +32,20 @@ MIN_AREA = {"bottle": 4, "glass": 4, "skin": 6, "shirt": 20}
 _BITS = 6
 
 
+@dataclass(frozen=True)
+class LabelRange:
+    """The mask lo <= labels <= hi of a label image, not written out: `components_each` reads it from the
+    labels (writing three masks per image was a pass over cold memory each)."""
+
+    labels: np.ndarray
+    lo: int
+    hi: int
+
+    def mask(self) -> np.ndarray:
+        """The mask as an array (uint8 0/255)."""
+        return cv2.inRange(self.labels, self.lo, self.hi)
+
+
 @dataclass
 class Blob:
     """One connected component: area (px), centroid (u, v), bbox (x, y, w, h), label id; full-resolution pixels."""
@@ -82,7 +96,7 @@ class ColourTable:
             first_row_over(lab, mask, 1, 0, 1)
             blob_pixels((np.zeros((2, 2), np.int32), 0, 0), 1, lab, 1, 0, 0, 2, 2)
             count_near(lab, mask, 1, 1)
-            _kernels.components8(mask, 0, 0, mask.shape[1], mask.shape[0])
+            _kernels.components8(lab, 1, 1, 0, 0, lab.shape[1], lab.shape[0])
 
     def labels(self, img: np.ndarray, step: int = 1) -> np.ndarray:
         """(H/step, W/step) uint8 labels of an RGB image (every `step`-th pixel)."""
@@ -113,10 +127,10 @@ class ColourTable:
         return (lab, mask, *silhouette(mask))
 
     def half(self, img: np.ndarray, ranges: tuple[tuple[int, int], ...], clear: int = 0, spots: np.ndarray | None = None,
-             stamp: np.ndarray | None = None) -> tuple[np.ndarray, list[np.ndarray], list[tuple[int, int, int, int]]]:
+             stamp: np.ndarray | None = None) -> tuple[np.ndarray, list, list[tuple[int, int, int, int]]]:
         """``labels(img, 2)`` with label ``clear`` removed (0) where `cover` of the half-resolution points
-        ``spots`` (u, v) by ``stamp`` lies, a mask per label range (lo, hi) of the result (bool; uint8 0/255
-        on the numpy path), and each mask's bounding box (as cv2.boundingRect).
+        ``spots`` (u, v) by ``stamp`` lies, a mask per label range (lo, hi) of the result (a `LabelRange`;
+        uint8 0/255 arrays on the numpy path), and each mask's bounding box (as cv2.boundingRect).
 
         One compiled pass over the image when numba is there (see `_kernels`): the image comes fresh
         from the renderer, which has evicted the CPU caches, so each of the numpy path's passes (resize,
@@ -130,8 +144,8 @@ class ColourTable:
             lohi = self._ranges.get(ranges)
             if lohi is None:
                 lohi = self._ranges[ranges] = tuple(np.array([r[i] for r in ranges], np.uint8) for i in (0, 1))
-            lab, masks, boxes = _kernels.label_half(img, self.lut, np.ascontiguousarray(spots, np.float64), stamp, clear, *lohi)
-            return lab, list(masks), [tuple(b) for b in boxes.tolist()]
+            lab, boxes = _kernels.label_half(img, self.lut, np.ascontiguousarray(spots, np.float64), stamp, clear, *lohi)
+            return lab, [LabelRange(lab, lo, hi) for lo, hi in ranges], [tuple(b) for b in boxes.tolist()]
         lab = self.labels(img, 2)
         if len(spots):
             lab[cover(spots, stamp, lab.shape) & (lab == clear)] = 0
@@ -231,8 +245,8 @@ def components(mask: np.ndarray, part: str, keep: int = 4, scale: int = 2) -> tu
 
 def components_each(masks: list[list[np.ndarray]], parts: tuple[str, ...], keep: tuple[int, ...], scale: int = 2,
                      pairs_only: bool = False, views_of: tuple[int, ...] | None = None, boxes=None):
-    """Connected components of several (half-resolution) masks: masks[camera][k] (bool, or uint8 with
-    nonzero pixels in).  Returns, per camera
+    """Connected components of several (half-resolution) masks: masks[camera][k] (bool, uint8 with
+    nonzero pixels in, or a `LabelRange`).  Returns, per camera
     and part, the `keep[k]` largest blobs (full-resolution pixels; ``Blob.label`` indexes the views) and
     per camera and part the view of that mask: (labels, x0, y0), the label image of the part of the mask
     at column x0, row y0 (it covers all the mask's pixels; 0 elsewhere), as `blob_pixels` reads it
@@ -254,11 +268,12 @@ def components_each(masks: list[list[np.ndarray]], parts: tuple[str, ...], keep:
     for c, cm in enumerate(masks):
         oc, vc = [], []
         for k, m in enumerate(cm):
-            m8 = m.view(np.uint8)
+            # the mask as a range of values of an array: a label image's range, or a mask's nonzero
+            src, lo, hi = (m.labels, m.lo, m.hi) if isinstance(m, LabelRange) else (m.view(np.uint8), 1, 255)
             if pairs_only and c > 0 and not out[0][k]:
                 bw = 0
             else:
-                bx, by, bw, bh = boxes[c][k] if boxes is not None else cv2.boundingRect(m8)
+                bx, by, bw, bh = boxes[c][k] if boxes is not None else cv2.boundingRect(cv2.inRange(src, lo, hi))
             want = views_of is None or k in views_of
             if bw == 0:
                 oc.append([])
@@ -266,12 +281,13 @@ def components_each(masks: list[list[np.ndarray]], parts: tuple[str, ...], keep:
                 continue
             x0, y0 = bx & ~1, by & ~1
             x1, y1 = bx + bw, by + bh
-            if _kernels is not None and m.dtype == np.bool_:
+            if _kernels is not None:
                 # the same labels, statistics and (as exact sums) centroids as OpenCV's, compiled
-                sub, stats, sums = _kernels.components8(m, x0, y0, x1, y1)
+                sub, stats, sums = _kernels.components8(src, lo, hi, x0, y0, x1, y1)
                 n = len(stats)
             else:
-                n, sub, stats, cents = cv2.connectedComponentsWithStatsWithAlgorithm(m8[y0:y1, x0:x1], 8, cv2.CV_32S, cv2.CCL_GRANA)
+                m8 = cv2.inRange(src[y0:y1, x0:x1], lo, hi)
+                n, sub, stats, cents = cv2.connectedComponentsWithStatsWithAlgorithm(m8, 8, cv2.CV_32S, cv2.CCL_GRANA)
                 # the pixel sums of this crop (exact integers) from OpenCV's centroids (sum / area)
                 sums = np.round(cents * stats[:, cv2.CC_STAT_AREA:cv2.CC_STAT_AREA + 1])
             vc.append((sub, x0, y0) if want else None)
