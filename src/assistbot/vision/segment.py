@@ -5,16 +5,20 @@ through the glass), skin (hands, arms, face) and shirt (torso, sleeves).  The ca
 ranges (`assistbot calibrate`) are a list of boxes (h_lo, h_hi, s_lo, s_hi, v_lo, v_hi) per part in
 OpenCV units (H 0..179, S and V 0..255; a red hue that wraps around 0 is two boxes).
 
-Speed: the boxes are compiled once into a 64x64x64 RGB -> label table (`ColourTable`), spread
-over all 2^24 colours; labelling an image is then one gather per pixel by its packed colour (no
-per-frame HSV conversion or per-part inRange).  Blobs are found on the half-resolution label
-image (`labels(img, step=2)`), with one connected-components pass per part group; fine
-measurements (stopper, liquid, edges) label only small full-resolution regions of interest.
+Speed: the boxes are compiled once into a 64x64x64 RGB -> label table (`ColourTable`); labelling
+an image is then one look-up per pixel by its packed colour (no per-frame HSV conversion or
+per-part inRange).  Blobs are found on the half-resolution label image (`ColourTable.half`), with
+one connected-components pass per part group; fine measurements (stopper, liquid, edges) label
+only small full-resolution regions of interest.  The per-pixel passes are numba kernels
+(`_kernels`) when numba is there, numpy and OpenCV otherwise, with the same results bit for bit:
+vision runs right after each render, which leaves the CPU caches cold, and there one pass over an
+image in compiled code costs much less than ~10 numpy and OpenCV calls that each re-read it.
 """
 
 from __future__ import annotations
 
 from dataclasses import dataclass
+from functools import cached_property
 
 import cv2
 import numpy as np
@@ -73,19 +77,8 @@ class ColourTable:
                 sel = ((hsv[:, 0] >= box[0]) & (hsv[:, 0] <= box[1]) & (hsv[:, 1] >= box[2]) & (hsv[:, 1] <= box[3])
                        & (hsv[:, 2] >= box[4]) & (hsv[:, 2] <= box[5]))
                 lut[sel] = LABEL[part]
-        self.lut = lut
+        self.lut = lut              # index r6 << 12 | g6 << 6 | b6: the compiled passes' table (262 KB)
         self._ranges: dict = {}     # `half`'s label ranges as the kernel's arrays (lo, hi), per ranges tuple
-
-        # the same table laid out for one gather by the pixel's packed colour, with each channel
-        # first shifted to its top 6 bits (one pass over the bytes): cv2.cvtColor to BGRA packs
-        # (r >> 2) << 16 | (g >> 2) << 8 | (b >> 2) into a 32-bit word, so the labels sit at
-        # those (sparse) offsets in a 2^24-entry table, of which the gather touches only the first
-        # 4 MB and 64 colours per cache line (spreading the table over all 2^24 colours instead, as
-        # before, made the gather ~3x slower in the running pipeline: cache and TLB misses)
-        t3 = lut.reshape(n, n, n)
-        q6 = np.arange(n)
-        self.lut24 = np.zeros(1 << 24, np.uint8)
-        self.lut24[(q6[:, None, None] << 16) | (q6[None, :, None] << 8) | q6[None, None, :]] = t3
         if _kernels is not None:   # compile (or load from numba's cache) now, not in the first frame
             self.half(np.zeros((2, 2, 3), np.uint8), ((1, 1),), 1, np.zeros((1, 2)), np.ones((1, 1), np.uint8))
             for img in (np.zeros((2, 2, 3), np.uint8), np.zeros((2, 2, 3), np.uint8)[:, :1]):   # whole, strided
@@ -97,6 +90,20 @@ class ColourTable:
             blob_pixels((np.zeros((2, 2), np.int32), 0, 0), 1, lab, 1, 0, 0, 2, 2)
             count_near(lab, mask, 1, 1)
             _kernels.components8(lab, 1, 1, 0, 0, lab.shape[1], lab.shape[0])
+
+    @cached_property
+    def lut24(self) -> np.ndarray:
+        """The table laid out for the numpy path's one gather by the pixel's packed colour, with each
+        channel first shifted to its top 6 bits (one pass over the bytes): cv2.cvtColor to BGRA packs
+        (r >> 2) << 16 | (g >> 2) << 8 | (b >> 2) into a 32-bit word, so the labels sit at those
+        (sparse) offsets in a 2^24-entry table, of which the gather touches only the first 4 MB and 64
+        colours per cache line (spreading the table over all 2^24 colours instead made the gather ~3x
+        slower in the running pipeline: cache and TLB misses).  Made when first used."""
+        n = 1 << _BITS
+        q6 = np.arange(n)
+        lut24 = np.zeros(1 << 24, np.uint8)
+        lut24[(q6[:, None, None] << 16) | (q6[None, :, None] << 8) | q6[None, None, :]] = self.lut.reshape(n, n, n)
+        return lut24
 
     def labels(self, img: np.ndarray, step: int = 1) -> np.ndarray:
         """(H/step, W/step) uint8 labels of an RGB image (every `step`-th pixel)."""
