@@ -148,7 +148,7 @@ def _pair(left: CameraModel, right: CameraModel) -> tuple:
         return ent[2]
     (Ql, ql), (Qr, qr) = left._Q_parts, right._Q_parts
     (Al, tl), (Ar, tr) = left._P_parts, right._P_parts
-    QS, qS = np.stack([Ql, Qr]), np.stack([ql, qr])[:, None, :]
+    QS, qS = np.array([Ql, Qr]), np.array([ql, qr])[:, None, :]      # np.stack's arrays, for less call overhead
     A2, t2 = np.hstack([Al, Ar]), np.concatenate([tl, tr])
     consts = (QS, qS, left.C - right.C, (left.C + right.C).tolist(), A2, t2)
     _PAIR[0] = (left, right, consts)
@@ -164,7 +164,7 @@ def triangulate(left: CameraModel, right: CameraModel, uv_left, uv_right) -> np.
         # product as the camera's own), then the same operations as below, point by point on
         # floats (unit rays: d1.d1 = d2.d2 = 1)
         QS, qS, w0, cc, _, _ = _pair(left, right)
-        raw = (np.stack([a, b]) @ QS + qS).tolist()
+        raw = (np.array([a, b]) @ QS + qS).tolist()      # np.array: np.stack's (2, N, 2) array, for less overhead
         r1, r2 = _unit_rows(raw[0]), _unit_rows(raw[1])
         d, e = (np.array([r1, r2]) @ w0).tolist()
         out = []

@@ -39,7 +39,8 @@ import numpy as np
 cv2.setNumThreads(1)   # per-frame work on small images: OpenCV's thread pool costs more than it saves
 
 from assistbot.vision.camera import CameraModel, expected_boxes, on_plane, triangulate
-from assistbot.vision.segment import LABEL, Blob, ColourTable, components_each
+from assistbot.vision.segment import (LABEL, Blob, ColourTable, blob_pixels, components_each, count_near, cover,
+                                      first_row_over, masked_saturation)
 from assistbot.world import layout
 
 MIN_EXTENT = 0.82
@@ -60,11 +61,12 @@ STATIC_SKIN_R = 0.08       # m: skin this close to a calibrated static spot is n
 STATIC_MARGIN = 2          # half-resolution px (~1-2 cm at the table) around the static cells' projections
 HAND_REACH = 0.10          # m: hand crop half-size
 _B, _S, _G, _L, _K, _T = (LABEL[p] for p in ("bottle", "stopper", "glass", "liquid", "skin", "shirt"))
-assert _L == _G + 1      # the glass mask is one inRange over both labels
-_DILATE = np.ones((5, 5), np.uint8)
-_DILATE3 = np.ones((3, 3), np.uint8)
-#: label -> 1 if it is one of these parts, per part set used for a silhouette (a cv2.LUT table)
+assert _L == _G + 1      # the glass mask is one label range over both labels
+#: the label ranges of the blob masks: bottle, glass or liquid (consecutive labels), skin
+_BLOB_LABELS = ((_B, _B), (_G, _L), (_K, _K))
+#: label -> 1 if it is one of these parts, per part set used for a silhouette, and for the hand's crop
 _PART_LUT = {ps: np.isin(np.arange(256), ps).astype(np.uint8) for ps in ((_B,), (_G, _L))}
+_SKIN_LUT = np.isin(np.arange(256), (_K,)).astype(np.uint8)
 _ANG = np.linspace(0, 2 * np.pi, 8, endpoint=False)
 #: an upright object's outline points (base and top rings) relative to its base centre
 _OUTLINE = {n: np.vstack([np.column_stack([layout.OBJECT_RADIUS[n] * np.cos(_ANG), layout.OBJECT_RADIUS[n] * np.sin(_ANG), np.full(8, z)])
@@ -192,11 +194,12 @@ class _Roi:
         self.x0, self.y0 = max(0, x - 4), max(0, y - pad_top)
         x1, y1 = min(W, x + w + 4), min(H, y + h + 4)
         self.img = img[self.y0:y1, self.x0:x1]
-        self.lab = table.labels(self.img)
-        m = cv2.LUT(self.lab, _PART_LUT[parts]).view(bool).reshape(self.lab.shape)   # one gather: the label is one of the parts
+        # the labels, where they are one of the parts (the silhouette), its rows' first and last pixels
+        # (for `axis`), its extents and moments
+        self.lab, m, *rows, ext, mom = table.region_silhouette(self.img, _PART_LUT[parts])
         self.mask = m
-        m8 = m.view(np.uint8)
-        bx, by, bw, bh = cv2.boundingRect(m8)   # the silhouette's extent
+        self._rows = rows
+        _, by, bw, bh, bl, br, tl, tr = ext.tolist()
         self.ok = bw > 0
         if not self.ok:
             return
@@ -204,16 +207,13 @@ class _Roi:
         self.w = float(bw)
         self.h = float(bh)
         # the bottom (top) two rows' leftmost and rightmost pixels
-        _, _, bw2, _ = bb = cv2.boundingRect(m8[max(self.top_r, self.bot_r - 1):self.bot_r + 1])
-        _, _, tw2, _ = tb = cv2.boundingRect(m8[self.top_r:self.top_r + 2])
-        self.bottom = np.array([self.x0 + bb[0] + 0.5 * (bw2 - 1), self.y0 + self.bot_r + 0.5])
-        self.top = np.array([self.x0 + tb[0] + 0.5 * (tw2 - 1), self.y0 + self.top_r - 0.5])
-        mo = cv2.moments(m8, binaryImage=True)
-        n = mo["m00"]
-        self.centroid = np.array([mo["m10"] / n + self.x0 + 0.5, mo["m01"] / n + self.y0 + 0.5])
+        self.bottom = np.array([self.x0 + bl + 0.5 * (br - bl), self.y0 + self.bot_r + 0.5])
+        self.top = np.array([self.x0 + tl + 0.5 * (tr - tl), self.y0 + self.top_r - 0.5])
+        n, m10, m01, mu20, mu11, mu02 = mom.tolist()     # as cv2.moments(binaryImage=True) gives them
+        self.centroid = np.array([m10 / n + self.x0 + 0.5, m01 / n + self.y0 + 0.5])
         self.tilt = 0.0
         if n > 3:   # the silhouette's main axis from its central moments
-            a, b, c = mo["mu20"] / n, mo["mu11"] / n, mo["mu02"] / n
+            a, b, c = mu20 / n, mu11 / n, mu02 / n
             root = math.sqrt(max(0.0, 0.25 * (a - c) ** 2 + b * b))
             l1, l0 = 0.5 * (a + c) + root, 0.5 * (a + c) - root
             if l1 > 1.5 * l0:   # elongated: the angle of the main axis (b, l1 - a) from the image vertical
@@ -226,12 +226,9 @@ class _Roi:
     def cap(self, part: int) -> None:
         """Count pixels of ``part`` right on top of the silhouette (a stopper in the bottle's neck, which
         a camera looking down at a near bottle sees in front of the neck) into its height."""
-        cols = self.mask.any(axis=0)
-        capped = (self.lab[:self.bot_r + 1] == part) & cols
-        rows = np.flatnonzero(capped.any(axis=1))
-        rows = rows[rows >= self.top_r - max(3, int(0.3 * self.h))]
-        if rows.size:
-            self.h_capped = float(self.bot_r - min(self.top_r, int(rows[0])) + 1)
+        row = first_row_over(self.lab, self.mask, part, self.top_r - max(3, int(0.3 * self.h)), self.bot_r)
+        if row >= 0:
+            self.h_capped = float(self.bot_r - min(self.top_r, row) + 1)
 
     def upright_tilt(self) -> float:
         """The silhouette's tilt from the image vertical: of its axis (the line through its full-width
@@ -252,11 +249,7 @@ class _Roi:
         top, bottom or part of a side (which the silhouette's centroid is not).  Computed once."""
         if self._axis is not None:
             return self._axis
-        m = self.mask
-        rows = np.flatnonzero(m.any(axis=1))
-        sub = m[rows]
-        first = sub.argmax(axis=1)
-        last = m.shape[1] - 1 - sub[:, ::-1].argmax(axis=1)
+        rows, first, last = self._rows
         width = last - first + 1
         full = _pct(width, 80)
         ok = np.abs(width - full) <= max(1.5, 0.12 * full)
@@ -276,15 +269,12 @@ class Detector:
 
     def __call__(self, left: np.ndarray, right: np.ndarray, cams: tuple[CameraModel, CameraModel]) -> Detections:
         imgs = (left, right)
-        lab = tuple(self.table.labels(im, 2) for im in imgs)
-        if len(self.static_cells):
-            for L, cam in zip(lab, cams):
-                L[self.static_mask(cam, L.shape) & (L == _K)] = 0
+        # half-resolution labels without the static skin, the masks of bottle, glass (or liquid) and skin, their boxes
+        spots = [self.static_spots(cam) if len(self.static_cells) else None for cam in cams]
+        lab, masks, boxes = zip(*(self.table.half(im, _BLOB_LABELS, _K, sp, self._margin) for im, sp in zip(imgs, spots)))
         det = Detections(labels=lab)
         # the blobs of each part in each camera (a right-image part only where the left has one to pair with)
-        # (glass or liquid: one inRange, 0/255, the labels being consecutive)
-        found, views = components_each([[L == _B, cv2.inRange(L, _G, _L), L == _K] for L in lab],
-                                       ("bottle", "glass", "skin"), (2, 2, 6), pairs_only=True, views_of=(2,))
+        found, views = components_each(masks, ("bottle", "glass", "skin"), (2, 2, 6), pairs_only=True, views_of=(2,), boxes=boxes)
         blobs = [{"bottle": f[0], "glass": f[1], "skin": (f[2], v[2])} for f, v in zip(found, views)]
         for name in ("bottle", "glass"):
             det.objects[name] = self._object(name, blobs, imgs, cams)
@@ -293,15 +283,13 @@ class Detector:
             self._held(o, det.hand)
         return det
 
+    def static_spots(self, cam: CameraModel) -> np.ndarray:
+        """The static skin cells' projections in a half-resolution image of this camera ((N, 2) u, v)."""
+        return cam.project(self.static_cells) * 0.5
+
     def static_mask(self, cam: CameraModel, shape: tuple[int, int]) -> np.ndarray:
         """Where the static skin cells show in a half-resolution image of this camera (bool)."""
-        uv = cam.project(self.static_cells) * 0.5
-        ok = np.isfinite(uv).all(axis=1)
-        u, v = uv[ok, 0].astype(int), uv[ok, 1].astype(int)
-        ok = (u >= 0) & (v >= 0) & (u < shape[1]) & (v < shape[0])
-        m = np.zeros(shape, np.uint8)
-        m[v[ok], u[ok]] = 1
-        return cv2.dilate(m, self._margin).view(bool)
+        return cover(self.static_spots(cam), self._margin, shape)
 
     @staticmethod
     def _held(o: ObjectDetection, hand: HandDetection) -> None:
@@ -387,8 +375,7 @@ class Detector:
             exp = np.pi * (0.019 * f / depth) ** 2 * 0.5
             red, occ = [], []
             for roi in rois:
-                near = cv2.dilate(roi.mask.view(np.uint8), _DILATE) > 0
-                red.append(min(1.5, float(np.count_nonzero(near & (roi.lab == _S))) / exp))
+                red.append(min(1.5, float(count_near(roi.lab, roi.mask, _S, 2)) / exp))    # within 2 px
                 band = roi.lab[max(0, roi.top_r - int(0.3 * roi.h)):roi.top_r + 3]
                 occ.append(float(np.count_nonzero(band == _K)) / max(1.0, 0.3 * roi.h * roi.w))
             det.stopper = (red[0], red[1])
@@ -398,16 +385,13 @@ class Detector:
             return
         roi = rois[0]
         m = roi.mask
-        liq = [float(np.count_nonzero(r.mask & (r.lab == _L))) / max(1.0, r.area) for r in rois]
+        liq = [float(count_near(r.lab, r.mask, _L, 0)) / max(1.0, r.area) for r in rois]
         third = max(1, int(roi.h) // 3)
         rows = m[roi.top_r:roi.bot_r + 1]
         width_top = float(rows[:third].sum()) / third
         width_bot = float(rows[-third:].sum()) / third
         shape = (width_top - width_bot) / max(1.0, roi.w)
-        r, g, b = cv2.split(roi.img)
-        mx = cv2.max(cv2.max(r, g), b).astype(np.float32)
-        sat = (mx - cv2.min(cv2.min(r, g), b)) / np.maximum(mx, 1.0)
-        det.crop = _crop(sat * m, 0, roi.top_r - 1, m.shape[1], roi.bot_r + 2, CROP["glass"])
+        det.crop = _crop(masked_saturation(roi.img, m), 0, roi.top_r - 1, m.shape[1], roi.bot_r + 2, CROP["glass"])
         det.feat = np.array([max(liq), min(liq), shape, det.tilt, float(pos[2])], np.float32)
 
     # ------------------------------------------------------------------ hand
@@ -439,15 +423,11 @@ class Detector:
         for L, bb, cc, cam in ((lab[0], a, cl, cams[0]), (lab[1], b, cr, cams[1])):
             x, y, w, h = (v // 2 for v in bb.bbox)
             x0, y0, x1, y1 = max(0, x - 2), max(0, y - 2), min(L.shape[1], x + w + 2), min(L.shape[0], y + h + 2)
-            sub = L[y0:y1, x0:x1]
-            skin = cc[y0:y1, x0:x1] == bb.label        # this blob's own pixels (from the one components pass)
-            # the pixels' centres (x, y) at full resolution: small integers and halves, exact in any order
-            P = np.argwhere(skin)[:, ::-1] * 2.0 + [2 * x0 + 0.5, 2 * y0 + 0.5]
-            sleeve = cv2.dilate((sub == _T).view(np.uint8), _DILATE3) > 0
-            touch = np.nonzero(skin & sleeve)
-            if len(touch[0]) >= 2:
-                nt = touch[0].size                # the means as np.mean takes them: sum / count
-                root = np.array([touch[1].sum() / nt + x0, touch[0].sum() / nt + y0]) * 2 + 0.5
+            # this blob's own pixels (from the one components pass): their centres (x, y) at full
+            # resolution, and those touching the sleeve: count, sums of columns and rows in the window
+            P, nt, sx, sy = blob_pixels(cc, bb.label, L, _T, x0, y0, x1, y1)
+            if nt >= 2:                           # the means as np.mean takes them: sum / count
+                root = np.array([sx / nt + x0, sy / nt + y0]) * 2 + 0.5
             else:
                 tm = cv2.moments((L == _T).view(np.uint8), binaryImage=True)
                 root = np.array([tm["m10"] / tm["m00"], tm["m01"] / tm["m00"]]) * 2 if tm["m00"] > 0 else bb.centroid + [0, -40]
@@ -473,7 +453,7 @@ class Detector:
         depth = math.sqrt(dd.dot(dd))             # np.linalg.norm(Xd - C)
         half = int(round(cams[0].K[0, 0] * HAND_REACH / depth))
         u, v = (int(round(c)) for c in ends[0])
-        skin_full = self.table.labels(imgs[0][max(0, v - half):v + half, max(0, u - half):u + half]) == _K
+        skin_full = self.table.region(imgs[0][max(0, v - half):v + half, max(0, u - half):u + half], _SKIN_LUT)[1]
         crop = _crop(skin_full.astype(np.float32), 0, 0, skin_full.shape[1], skin_full.shape[0], CROP["hand"]) \
             if skin_full.size else np.zeros(CROP["hand"][::-1], np.float32)
         px = depth / cams[0].K[0, 0]                                # m per pixel at the hand
