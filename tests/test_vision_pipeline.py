@@ -102,6 +102,39 @@ def test_standing_object_with_its_base_hidden_in_one_camera_is_placed_not_droppe
     world.reset()
 
 
+def test_compiled_and_numpy_passes_give_the_same_detections(world, monkeypatch):
+    """The per-pixel passes run as numba kernels when numba is there, as numpy and OpenCV otherwise:
+    the same detections, bit for bit, either way."""
+    from assistbot.vision import segment
+    from assistbot.vision.detect import Detector
+    from assistbot.vision.library import load_calibration
+    if segment._kernels is None:
+        pytest.skip("numba is not installed: only the numpy path runs")
+    cal = load_calibration()
+    sampler = SceneSampler(4, "test")
+    with StereoCapture(world.model) as cap:
+        frames = []
+        for posture in ("grasp_ag", "pointing", "pour", "remove_stopper", "none"):
+            pose(world, sampler.sample(posture))
+            frames.append(cap.grab(world.data))
+    compiled = [Detector(cal)(f.left, f.right, f.cams) for f in frames]
+    monkeypatch.setattr(segment, "_kernels", None)
+    plain = [Detector(cal)(f.left, f.right, f.cams) for f in frames]
+    for a, b in zip(compiled, plain):
+        assert np.array_equal(a.labels[0], b.labels[0]) and np.array_equal(a.labels[1], b.labels[1])
+        for name in ("bottle", "glass"):
+            oa, ob = a.objects[name], b.objects[name]
+            assert oa.visible == ob.visible and oa.extent == ob.extent and oa.tilt == ob.tilt
+            assert (oa.position is None) == (ob.position is None)
+            assert oa.position is None or np.array_equal(oa.position, ob.position)
+            assert (oa.feat is None) == (ob.feat is None) and (oa.feat is None or np.array_equal(oa.feat, ob.feat))
+        assert a.hand.visible == b.hand.visible
+        if a.hand.visible:
+            assert np.array_equal(a.hand.position, b.hand.position) and np.array_equal(a.hand.geo, b.hand.geo)
+            assert np.array_equal(a.hand.crop, b.hand.crop)
+    world.reset()
+
+
 def test_missing_library_is_a_user_error_naming_the_command(tmp_path, capsys):
     with pytest.raises(UserError, match="assistbot templates"):
         Vision(root=tmp_path)
