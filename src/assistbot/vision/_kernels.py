@@ -328,8 +328,8 @@ def components8(src, lo, hi, x0, y0, x1, y1):
         final[roots[order[j]]] = j + 1
     stats = np.zeros((n + 1, 5), np.int32)
     sums = np.zeros((n + 1, 2), np.int64)
-    lo = np.full((n + 1, 2), 1 << 30, np.int64)
-    hi = np.full((n + 1, 2), -1, np.int64)
+    mins = np.full((n + 1, 2), 1 << 30, np.int64)    # each component's smallest and largest x, y
+    maxs = np.full((n + 1, 2), -1, np.int64)
     for y in range(h):
         for x in range(w):
             if lab[y, x]:
@@ -338,9 +338,9 @@ def components8(src, lo, hi, x0, y0, x1, y1):
                 stats[f, 4] += 1
                 sums[f, 0] += x
                 sums[f, 1] += y
-                lo[f, 0], lo[f, 1] = min(lo[f, 0], x), min(lo[f, 1], y)
-                hi[f, 0], hi[f, 1] = max(hi[f, 0], x), max(hi[f, 1], y)
+                mins[f, 0], mins[f, 1] = min(mins[f, 0], x), min(mins[f, 1], y)
+                maxs[f, 0], maxs[f, 1] = max(maxs[f, 0], x), max(maxs[f, 1], y)
     for f in range(1, n + 1):
-        stats[f, 0], stats[f, 1] = lo[f, 0], lo[f, 1]
-        stats[f, 2], stats[f, 3] = hi[f, 0] - lo[f, 0] + 1, hi[f, 1] - lo[f, 1] + 1
+        stats[f, 0], stats[f, 1] = mins[f, 0], mins[f, 1]
+        stats[f, 2], stats[f, 3] = maxs[f, 0] - mins[f, 0] + 1, maxs[f, 1] - mins[f, 1] + 1
     return lab, stats, sums

@@ -8,8 +8,8 @@ never the working hand), so that the working hand can be told apart: as blob cen
 cloud of 1 cm cells on the static skin's surface, found from the renderer's depth (the other
 calibration target) as the skin cells occupied in most scenes, which the working arm, posed
 anew in each scene, is not.  And where the working arm is rooted (its shoulder, which the
-seated person does not move): the hand is the part of a skin blob farthest from it.  The result is a small JSON file (`assets/templates/calibration.json`)
-that `assistbot calibrate` writes.
+seated person does not move): the hand is the part of a skin blob farthest from it.  The result
+is a small JSON file (`assets/templates/calibration.json`) that `assistbot calibrate` writes.
 """
 
 from __future__ import annotations
@@ -92,7 +92,8 @@ def calibrate(seed: int = 0, n_scenes: int = 18, progress=None) -> dict:
     ranges["glass"] = [[a, b, *r[2:]] for (a, b), r in zip(_circ_range(g.astype(int), 97, 3), ranges["glass"])]
     static = _static_skin(frames, ranges)
     return {"version": 1, "seed": seed, "scenes": n_scenes, "hsv": ranges, "static_skin": static,
-            "static_skin_cells": _static_cells(cells), "arm_root": [round(float(v), 4) for v in np.median(roots, axis=0)], "pixels": {k: int(len(v)) for k, v in pix.items()}}
+            "static_skin_cells": _static_cells(cells), "arm_root": [round(float(v), 4) for v in np.median(roots, axis=0)],
+            "pixels": {k: int(len(v)) for k, v in pix.items()}}
 
 
 STATIC_CELL = 0.01          # m: the static skin cloud's cell size

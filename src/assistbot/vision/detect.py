@@ -39,8 +39,8 @@ import numpy as np
 cv2.setNumThreads(1)   # per-frame work on small images: OpenCV's thread pool costs more than it saves
 
 from assistbot.vision.camera import CameraModel, expected_boxes, on_plane, triangulate
-from assistbot.vision.segment import (LABEL, Blob, ColourTable, blob_pixels, components_each, count_near, cover,
-                                      first_row_over, masked_saturation)
+from assistbot.vision.segment import (LABEL, Blob, ColourTable, blob_pixels, components_each, count_near, first_row_over,
+                                      masked_saturation)
 from assistbot.world import layout
 
 MIN_EXTENT = 0.82
@@ -287,10 +287,6 @@ class Detector:
         """The static skin cells' projections in a half-resolution image of this camera ((N, 2) u, v)."""
         return cam.project(self.static_cells) * 0.5
 
-    def static_mask(self, cam: CameraModel, shape: tuple[int, int]) -> np.ndarray:
-        """Where the static skin cells show in a half-resolution image of this camera (bool)."""
-        return cover(self.static_spots(cam), self._margin, shape)
-
     @staticmethod
     def _held(o: ObjectDetection, hand: HandDetection) -> None:
         """A lifted object is seen only in the hand (else: a hidden bottom edge, a bad match)."""
@@ -327,13 +323,13 @@ class Detector:
         r_obj = layout.OBJECT_RADIUS[name]
         on_table = abs(Xb[2]) < ON_TABLE_TOL
         bases = [_rim_to_axis(cam, roi.bottom, 0.0, r_obj) for cam, roi in zip(cams, rois)]
+        axis = None if on_table else _axis_xy(cams, rois)
         if on_table:
             (ax, ay, az), (bx, by, bz) = bases
             pos = np.array([(ax + bx) / 2, (ay + by) / 2, (az + bz) / 2])
         else:   # lifted: x, y from the axis in both images; the height from the silhouette's centroid
             pos = triangulate(cams[0], cams[1], rois[0].centroid, rois[1].centroid)[0]
             pos[2] -= CENTROID_Z[name]
-            axis = _axis_xy(cams, rois)
             if axis is not None:
                 pos[:2] = axis
             else:
@@ -356,7 +352,8 @@ class Detector:
             # two bottoms not one point: standing if its axis (from the rows showing its full width in
             # both) stands where each whole camera's base ray meets the table; placed by those rays
             whole_bases = [bases[c] for c in (0, 1) if whole[c]]
-            axis = _axis_xy(cams, rois)
+            if on_table:   # (a lifted one's axis is found above)
+                axis = _axis_xy(cams, rois)
             if axis is not None and all(math.hypot(x - axis[0], y - axis[1]) < BASE_AGREE for x, y, _ in whole_bases):
                 pos = np.array([sum(p[0] for p in whole_bases), sum(p[1] for p in whole_bases), 0.0]) / len(whole_bases)
                 on_table = visible = True

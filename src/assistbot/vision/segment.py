@@ -45,10 +45,6 @@ class LabelRange:
     lo: int
     hi: int
 
-    def mask(self) -> np.ndarray:
-        """The mask as an array (uint8 0/255)."""
-        return cv2.inRange(self.labels, self.lo, self.hi)
-
 
 @dataclass
 class Blob:
@@ -302,8 +298,8 @@ def components_each(masks: list[list[np.ndarray]], parts: tuple[str, ...], keep:
             if n > 1:
                 # the largest components of at least the minimum area, larger first, ties in label order
                 areas = stats[:, cv2.CC_STAT_AREA].tolist()
-                lo = MIN_AREA[parts[k]]
-                big = sorted((i for i in range(1, n) if areas[i] >= lo), key=lambda i: -areas[i])[:keep[k]]
+                min_area = MIN_AREA[parts[k]]
+                big = sorted((i for i in range(1, n) if areas[i] >= min_area), key=lambda i: -areas[i])[:keep[k]]
                 for i in big:
                     x, y, w, h = stats[i, :4].tolist()
                     a = float(areas[i])
