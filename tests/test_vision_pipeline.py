@@ -219,3 +219,13 @@ def test_colour_table_labels_every_colour_as_its_hsv_boxes_say():
     assert np.array_equal(table.labels(img), want)
     assert np.array_equal(table.labels(img, 2), want[::2, ::2])
     assert np.array_equal(table.labels(img[5:17, 3:30]), want[5:17, 3:30])   # a non-contiguous region of interest
+
+
+def test_accuracy_interval_narrows_with_the_set_and_contains_the_accuracy():
+    from assistbot.vision.evaluate import wilson
+    lo, hi = wilson(47, 50)
+    assert lo < 47 / 50 < hi < 1.0
+    lo5, hi5 = wilson(470, 500)
+    assert hi5 - lo5 < (hi - lo) / 2.5     # ten times the frames: about a third of the width
+    assert abs(lo5 - 0.9155) < 0.002 and abs(hi5 - 0.9577) < 0.002   # the textbook Wilson interval
+    assert all(np.isnan(wilson(0, 0)))
