@@ -14,11 +14,10 @@ from assistbot.vision.scenes import SceneSampler, pose
 from assistbot.world import PAPER_ARRANGEMENTS, build_world
 
 # Accuracy goals of issue 8 and the margin this test allows on its small set (60 frames, where one
-# frame is ~1.7%).  Measured on this set: state 97.5%, posture 94.8%, median 0.8 cm, p95 1.8 cm.
-# Hand posture still falls short of its goal (93.7% on the 500-frame benchmark): its margin is the
-# wider one.
+# frame is ~1.7%).  Measured on this set: state 97.5%, posture 98.3%, median 0.8 cm, p95 1.8 cm
+# (the 500-frame benchmark: state 99.2%, posture 95.4%, whose 95% interval is about +-2 points).
 GOAL_OBJECT, GOAL_POSTURE, GOAL_MEDIAN_CM, GOAL_P95_CM = 0.98, 0.95, 2.0, 5.0
-MARGIN_OBJECT, MARGIN_POSTURE, MARGIN_MEDIAN_CM, MARGIN_P95_CM = 0.04, 0.05, 0.0, 0.0
+MARGIN_OBJECT, MARGIN_POSTURE, MARGIN_MEDIAN_CM, MARGIN_P95_CM = 0.04, 0.04, 0.0, 0.0
 
 @pytest.fixture(scope="module")
 def world():
@@ -197,6 +196,52 @@ def test_new_postures_pose_their_objects():
     assert lab.objects["glass"]["position"][2] > 0.3
 
 
+def test_turning_scene_holds_the_inverted_glass_mid_turn_in_a_side_grip():
+    """The person's turn-glass behaviour, posed: the glass lifted in the hand and rolled part of the way."""
+    import dataclasses
+    from assistbot.human.behaviours import TURN_LIFT
+    from assistbot.world import Arrangement, Placement
+    w = build_world(PAPER_ARRANGEMENTS["fig3"], 0)
+    arr = Arrangement(bottle=Placement("HWS", "closed", (-0.30, 0.15)), glass=Placement("HWS", "inverted", (-0.28, -0.12)))
+    spec = SceneSampler(3, "test").sample("grasp_sg")
+    upright = np.zeros(3)
+    for variant, fraction in (("table", 0.5), ("turning", 0.5)):
+        lab = pose(w, dataclasses.replace(spec, arrangement=arr, target="glass", variant=variant, reach_fraction=fraction))
+        axis = w.data.xmat[w.body_id["glass"]].reshape(3, 3)[:, 2].copy()
+        if variant == "table":
+            upright, z0 = axis, lab.objects["glass"]["position"][2]
+            continue
+        assert lab.posture == "grasp_sg" and lab.object_in_hand == "glass"
+        assert np.degrees(np.arccos(np.clip(axis @ upright, -1, 1))) == pytest.approx(90, abs=5)   # half of half a turn
+        assert lab.objects["glass"]["position"][2] > z0 + 0.5 * TURN_LIFT
+
+
+def test_a_lifted_bottle_whose_stopper_no_camera_shows_has_its_state_out_of_view(world):
+    """Held from above, the stopper is under the fingers: vision's state is then a guess (wrong in
+    most of these scenes), and the percept says the state is out of view; a stopper in view is
+    reported closed, in view."""
+    from assistbot.vision.pipeline import LOW_CONFIDENCE, STOPPER_SEEN
+    s = SceneSampler(5, "test")
+    v = Vision()
+    hidden = shown = 0
+    with StereoCapture(world.model) as cap:
+        for _ in range(40):
+            spec = s.sample("grasp_ag")
+            if spec.target != "bottle" or spec.variant == "table":
+                continue
+            pose(world, spec)
+            b = v.perceive(cap.grab(world.data)).objects["bottle"]
+            if not b.seen:
+                continue
+            if max(v.last.objects["bottle"].stopper) < STOPPER_SEEN:
+                hidden += 1
+                assert not b.state_seen and b.confidence <= LOW_CONFIDENCE
+            else:
+                shown += 1
+                assert b.state_seen and b.state == "closed"
+    assert hidden >= 3 and shown >= 1
+
+
 def test_segmentation_labels_split_skin_and_shirt(world):
     from assistbot.world.render import SEGMENT_LABELS, Renderer
     inv = {v: k for k, v in SEGMENT_LABELS.items()}
@@ -229,3 +274,19 @@ def test_accuracy_interval_narrows_with_the_set_and_contains_the_accuracy():
     assert hi5 - lo5 < (hi - lo) / 2.5     # ten times the frames: about a third of the width
     assert abs(lo5 - 0.9155) < 0.002 and abs(hi5 - 0.9577) < 0.002   # the textbook Wilson interval
     assert all(np.isnan(wilson(0, 0)))
+
+
+def test_finger_parts_find_one_long_thin_finger_not_fingers_held_together():
+    import cv2
+    from assistbot.vision.detect import finger_parts
+    palm = np.zeros((40, 40), np.uint8)
+    cv2.circle(palm, (12, 20), 8, 1, -1)
+    pointing = palm.copy()
+    pointing[19:21, 20:36] = 1            # an index finger: 2 px wide, 16 px long
+    open_hand = palm.copy()
+    open_hand[14:27, 20:32] = 1           # fingers held together: one wide part
+    cm = 0.5                               # cm per px
+    fp, fo = finger_parts(pointing.view(bool), cm), finger_parts(open_hand.view(bool), cm)
+    assert fp[2] >= 15 * cm > fo[2]       # the longest thin piece: the finger (3-px opening)
+    assert fp[1] >= 32 * cm * cm * 0.9    # ... and it is the finger's whole area
+    assert not finger_parts(np.zeros((0, 0), bool), cm).any()

@@ -109,6 +109,7 @@ class Cognition:
         self._since = np.full(n_spoken, -1.0)      # time since which the pool is above threshold, -1 if not
         self._release_until = -1.0
         self._habituation: dict[str, float] = {}  # action -> time released
+        self._state_out_of_view: dict[str, str | None] = {}   # object -> state remembered when it went out of view
         self._pending: list[Said] = []
         self._new = False
         self._released: str | None = None
@@ -137,16 +138,27 @@ class Cognition:
         for obj, states in task.OBJECT_STATES.items():
             o = percept.objects.get(obj)
             zone = "RWS" if held == obj else (o.zone if o is not None else None)
-            here = task.oml_item(obj, o.state, zone) if (o is not None and o.seen) else None
+            here, conf = None, 0.0
+            if o is not None and o.seen and o.state_seen:
+                here, conf = task.oml_item(obj, o.state, zone), o.confidence
+                self._state_out_of_view.pop(obj, None)
+            elif o is not None and o.seen:
+                # the state out of view (the stopper under the hand; vision's state only a guess): the
+                # object where it is seen now, in the state remembered when it went out of view (read
+                # once: the memory's peak fades as the object's input moves to the new place)
+                if obj not in self._state_out_of_view:
+                    self._state_out_of_view[obj] = self._remembered_state(obj)
+                if self._state_out_of_view[obj] is not None:
+                    here, conf = task.oml_item(obj, self._state_out_of_view[obj], zone), 1.0
             for st in states:
                 for z in task.ZONES:
                     item = task.oml_item(obj, st, z)
                     if here is None:
                         amp = 0.0
                     elif item == here:
-                        amp = s["oml"] * o.confidence
+                        amp = s["oml"] * conf
                     else:
-                        amp = s["oml_against"] * o.confidence
+                        amp = s["oml_against"] * conf
                     net.set_stimulus("OML", item, amp)
         if self._habituation:
             self._apply_release_inputs()
@@ -226,6 +238,14 @@ class Cognition:
             above = [(v, item) for v, item in zip(u[a:b], LAYERS[layer]) if v > thr]
             out[layer] = [item for _, item in sorted(above, key=lambda p: -p[0])]
         return out
+
+    def _remembered_state(self, obj: str) -> str | None:
+        """The state of the strongest OML peak of ``obj`` (any zone), or None without one."""
+        for item in self.peaks("OML"):
+            for st in task.OBJECT_STATES[obj]:
+                if any(item == task.oml_item(obj, st, z) for z in task.ZONES):
+                    return st
+        return None
 
     def peaks(self, layer: str) -> list[str]:
         return self.net.peaks(layer, float(self.config.data["readout"]["threshold"]))

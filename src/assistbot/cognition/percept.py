@@ -13,7 +13,9 @@ oracle in `assistbot.cognition.oracle`):
   "closed"/"open"; glass "inverted"/"empty"/"full" (empty and full are
   upright). ``position``: (x, y, z) in metres in the table frame (origin at
   the table centre on its surface, x toward the robot, z up); ``confidence``
-  in [0, 1] scales the evidence.
+  in [0, 1] scales the evidence. ``state_seen=False``: the object is seen
+  but its state is not (the stopper under the person's hand): ``state`` is
+  a guess, and cognition places the state it remembers where the object is.
 - ``hand``: the human's working hand as the cameras see it. ``posture`` is
   one of `assistbot.task.HAND_POSTURES`: "none" (at rest / nothing
   object-directed), "reach" (moving toward ``directed_at``), "grasp_ag" /
@@ -45,7 +47,10 @@ ROBOT_STATUSES = ("idle", "running", "finished", "failed")
 
 @dataclass
 class ObjectPercept:
-    """One object as seen: type, zone, state, position (m, table frame), confidence, seen."""
+    """One object as seen: type, zone, state, position (m, table frame), confidence, seen.
+
+    ``state_seen`` False: the object is seen but its state is not (the bottle's stopper under the
+    person's hand); ``state`` is then only a guess, and cognition keeps the state it remembers."""
 
     type: str
     zone: str = "HWS"
@@ -53,6 +58,7 @@ class ObjectPercept:
     position: tuple[float, float, float] = (0.0, 0.0, 0.0)
     confidence: float = 1.0
     seen: bool = True
+    state_seen: bool = True
 
     def validate(self) -> None:
         if self.type not in OBJECTS:

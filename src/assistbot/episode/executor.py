@@ -98,7 +98,7 @@ class RobotExecutor:
         """Seen, not known: the bottle looks open."""
         p = self._percept
         b = p.objects.get("bottle") if p is not None else None
-        return bool(b is not None and b.seen and b.state == "open")
+        return bool(b is not None and b.seen and b.state_seen and b.state == "open")
 
     # -- decisions -----------------------------------------------------------------------------
     def begin(self, action: str, t: float, utterance: str = "") -> None:

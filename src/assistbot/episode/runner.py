@@ -278,7 +278,7 @@ class Episode:
         return int(self.world.drunk.sum()) >= DRINK_FRACTION * self._drink_base
 
     def _log_tick(self, t: float, percept, decision) -> None:
-        objs = {k: {"zone": o.zone, "state": o.state, "seen": o.seen, "conf": round(o.confidence, 2),
+        objs = {k: {"zone": o.zone, "state": o.state, "seen": o.seen, "state_seen": o.state_seen, "conf": round(o.confidence, 2),
                     "pos": [round(float(v), 3) for v in o.position]} for k, o in percept.objects.items()}
         h = percept.hand
         self.log.append({

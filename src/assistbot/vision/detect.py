@@ -60,6 +60,7 @@ FACE_Z = 0.40              # m above the table: skin higher than this is the fac
 STATIC_SKIN_R = 0.08       # m: skin this close to a calibrated static spot is not the working hand
 STATIC_MARGIN = 2          # half-resolution px (~1-2 cm at the table) around the static cells' projections
 HAND_REACH = 0.10          # m: hand crop half-size
+HOG_CELL, HOG_BINS = 8, 6  # the hand crops' gradient histograms: cells (px) and orientations
 _B, _S, _G, _L, _K, _T = (LABEL[p] for p in ("bottle", "stopper", "glass", "liquid", "skin", "shirt"))
 assert _L == _G + 1      # the glass mask is one label range over both labels
 #: the label ranges of the blob masks: bottle, glass or liquid (consecutive labels), skin
@@ -154,6 +155,52 @@ def _match(a: Blob, cands: list[Blob]) -> Blob | None:
         if s < score:
             best, score = b, s
     return best
+
+
+_HOG_CELLS: dict[tuple[int, int], tuple[np.ndarray, int]] = {}
+
+
+def outline_hog(crop: np.ndarray) -> np.ndarray:
+    """A histogram of oriented gradients of a hand crop (its skin mask): per `HOG_CELL`-px cell, the
+    gradient magnitude summed over `HOG_BINS` unsigned orientations, normalised over the crop.  The
+    matched prototypes score the whole outline; this says where its edges run which way (an index
+    finger's two long edges, an open hand's several), which tells reach from pointing."""
+    c = crop.astype(np.float32, copy=False)
+    # central differences and their polar form: OpenCV's calls, as numpy's cost more than the sums here
+    mag, ang = cv2.cartToPolar(cv2.Sobel(c, cv2.CV_32F, 1, 0, ksize=1), cv2.Sobel(c, cv2.CV_32F, 0, 1, ksize=1))
+    if c.shape not in _HOG_CELLS:
+        h, w = c.shape
+        n = w // HOG_CELL
+        _HOG_CELLS[c.shape] = (((np.arange(h)[:, None] // HOG_CELL) * n + np.arange(w)[None, :] // HOG_CELL).ravel() * HOG_BINS,
+                               n * (h // HOG_CELL) * HOG_BINS)
+    cell, size = _HOG_CELLS[c.shape]
+    b = (ang.ravel() * (HOG_BINS / np.pi)).astype(np.intp) % HOG_BINS     # angle in [0, 2 pi): unsigned bins
+    out = np.bincount(cell + b, mag.ravel(), size).astype(np.float32)
+    return out / (np.linalg.norm(out) + 1e-3)
+
+
+_OPEN = [cv2.getStructuringElement(cv2.MORPH_ELLIPSE, (k, k)) for k in (3, 5)]
+
+
+def finger_parts(skin: np.ndarray, cm_per_px: float) -> np.ndarray:
+    """Fingers standing out of the hand, from its full-resolution skin mask: what an opening by a 3-px
+    and by a 5-px disc removes (parts under 3 and under 5 px wide), each as its area, its largest
+    piece's area and that piece's length (cm^2, cm^2, cm).  A pointing index finger is one long thin
+    piece; fingers held together in an open hand are one wide part: they tell reach from pointing
+    where the template-size crop has lost the finger."""
+    out = np.zeros(3 * len(_OPEN), np.float32)
+    if skin.size == 0:
+        return out
+    m = skin.view(np.uint8)
+    a2 = cm_per_px * cm_per_px
+    for k, disc in enumerate(_OPEN):
+        thin = cv2.subtract(m, cv2.morphologyEx(m, cv2.MORPH_OPEN, disc))
+        n, _, st, _ = cv2.connectedComponentsWithStats(thin, connectivity=8)
+        if n > 1:
+            j = 1 + int(np.argmax(st[1:, cv2.CC_STAT_AREA]))
+            out[3 * k:3 * k + 3] = (float(st[1:, cv2.CC_STAT_AREA].sum()) * a2, float(st[j, cv2.CC_STAT_AREA]) * a2,
+                                    math.hypot(st[j, cv2.CC_STAT_WIDTH], st[j, cv2.CC_STAT_HEIGHT]) * cm_per_px)
+    return out
 
 
 def _rim_to_axis(cam: CameraModel, uv, z: float, r: float) -> tuple[float, float, float]:
@@ -446,17 +493,24 @@ class Detector:
                 sd = np.sqrt((dev * dev).sum(axis=0) / len(pr))
                 spread = [float(sd[0]), float(sd[1]), float(len(far))]
         Xd, Xr = triangulate(cams[0], cams[1], np.array([ends[0], roots[0]]), np.array([ends[1], roots[1]]))
-        dd = Xd - cams[0].C
-        depth = math.sqrt(dd.dot(dd))             # np.linalg.norm(Xd - C)
-        half = int(round(cams[0].K[0, 0] * HAND_REACH / depth))
-        u, v = (int(round(c)) for c in ends[0])
-        skin_full = self.table.region(imgs[0][max(0, v - half):v + half, max(0, u - half):u + half], _SKIN_LUT)[1]
-        crop = _crop(skin_full.astype(np.float32), 0, 0, skin_full.shape[1], skin_full.shape[0], CROP["hand"]) \
-            if skin_full.size else np.zeros(CROP["hand"][::-1], np.float32)
+        # the hand's skin around its end in each camera: the left one, at the template size, is matched
+        # against the prototypes; both give their outline's gradient histogram and their thin parts
+        # (two views of the fingers)
+        views = []
+        for img, cam, end in zip(imgs, cams, ends):
+            dd = Xd - cam.C
+            dist = math.sqrt(dd.dot(dd))          # np.linalg.norm(Xd - C)
+            half = int(round(cam.K[0, 0] * HAND_REACH / dist))
+            u, v = (int(round(c)) for c in end)
+            skin = self.table.region(img[max(0, v - half):v + half, max(0, u - half):u + half], _SKIN_LUT)[1]
+            c = _crop(skin.astype(np.float32), 0, 0, skin.shape[1], skin.shape[0], CROP["hand"]) \
+                if skin.size else np.zeros(CROP["hand"][::-1], np.float32)
+            views.append((c, dist, outline_hog(c), finger_parts(skin, dist / cam.K[0, 0] * 100)))
+        crop, depth = views[0][:2]
         px = depth / cams[0].K[0, 0]                                # m per pixel at the hand
         area = a.area * px ** 2 * 1e4                               # cm^2 of skin in view
         shape = [spread[0] * px * 100, spread[1] * px * 100, spread[2] * px * px * 1e4]   # cm, cm, cm^2
-        geo = self._hand_geo(Xd, Xr, det, area, shape)
+        geo = np.concatenate([self._hand_geo(Xd, Xr, det, area, shape), views[0][2], views[1][2], views[0][3], views[1][3]])
         return HandDetection(True, Xd, Xr, a, crop, geo, np.asarray(ends[0]))
 
     @staticmethod

@@ -98,9 +98,9 @@ class Vision:
             if not d.visible and not (robot_holding == name and _in_robot_hand(d, robot_tcp)):
                 op = _unseen(name)
             else:
-                state, conf = self._state(name, d, det.hand)
+                state, conf, state_seen = self._state(name, d, det.hand)
                 pos = tuple(round(float(v), 4) for v in d.position)
-                op = ObjectPercept(name, zone_of(pos[0]), state, pos, round(conf, 3), True)
+                op = ObjectPercept(name, zone_of(pos[0]), state, pos, round(conf, 3), True, state_seen)
             if robot_holding == name:
                 op.zone = "RWS"
                 if robot_tcp is not None:
@@ -112,13 +112,14 @@ class Vision:
         self.timing.render_ms = frame.render_ms
         return p
 
-    def _state(self, name: str, d, hand) -> tuple[str, float]:
-        """State and confidence.  Bottle: red touching it in either camera is the stopper (closed);
-        no red with the hand at the bottle's top (stereo: within `HAND_AT_TOP` m) means the stopper
-        may be hidden in the hand: the state then comes with a low confidence; else open."""
+    def _state(self, name: str, d, hand) -> tuple[str, float, bool]:
+        """State, confidence, and whether the state is in view.  Bottle: red touching it in either
+        camera is the stopper (closed); no red with the hand at the bottle's top (stereo: within
+        `HAND_AT_TOP` m) means the stopper may be hidden in the hand: the state then comes with a low
+        confidence, and as not in view if no camera shows red; else open."""
         if name != "bottle":
             state, conf, _ = self.classifiers[name].classify(d.crop, d.feat)
-            return state, conf
+            return state, conf, True
         hand_at_top = bool(hand.visible and _norm(hand.position - (d.position + [0, 0, 0.19])) < HAND_AT_TOP)
         # lifted in the person's hand: a grip from above covers the stopper wherever vision puts the hand
         hand_at_top |= bool(hand.visible and not d.on_table
@@ -126,13 +127,16 @@ class Vision:
         both = min(d.stopper) >= STOPPER_SEEN
         one = max(d.stopper) >= STOPPER_SEEN
         if both:
-            return "closed", 0.95
+            return "closed", 0.95, True
         if one and hand_at_top:
-            return "closed", 0.7       # the stopper shows beside the hand in one camera
-        if one or hand_at_top:       # the classifier only where the stopper's pixels do not decide
-            state, conf, _ = self.classifiers[name].classify(d.crop, d.feat)
-            return state, min(conf, LOW_CONFIDENCE)
-        return "open", 0.9
+            return "closed", 0.7, True     # the stopper shows beside the hand in one camera
+        if not (one or hand_at_top):
+            return "open", 0.9, True
+        # the classifier only where the stopper's pixels do not decide, with a low confidence; with no
+        # red in either camera and the hand over the top the stopper cannot be seen at all: the state
+        # is then a guess (how often the library's scenes show such bottles closed), and says so
+        state, conf, _ = self.classifiers[name].classify(d.crop, d.feat)
+        return state, min(conf, LOW_CONFIDENCE), one
 
     def _hand(self, det: Detections, p: Percept) -> HandPercept:
         h = det.hand

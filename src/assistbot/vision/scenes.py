@@ -21,7 +21,7 @@ import mujoco
 import numpy as np
 
 from assistbot.human.arm import ORIENT, SHOULDER_XY, grip_orientation, rot_y, rot_z
-from assistbot.human.behaviours import GRASP_HEIGHT, HOLD_OUT, REST
+from assistbot.human.behaviours import GRASP_HEIGHT, HOLD_OUT, REST, TURN_LIFT
 from assistbot.world import HAND_POSTURES, HUMAN_ARM_JOINTS, HUMAN_HAND_JOINTS, layout
 from assistbot.world.arrangement import Arrangement, Placement
 from assistbot.world.scripted import ik
@@ -40,7 +40,7 @@ class SceneSpec:
     head: tuple[float, float]                 # pan, tilt (rad)
     posture: str = "none"
     target: str | None = None                 # object reached / grasped / pointed at
-    variant: str = "table"                    # grasp: "table", "lifted", "held_out"; none: "rest", "home"
+    variant: str = "table"                    # grasp: "table", "lifted", "held_out", "turning"; none: "rest", "home"
     jitter: tuple[float, float, float] = (0.0, 0.0, 0.0)
     reach_fraction: float = 0.6
     robot_holds: str | None = None            # object placed in the robot's gripper (tests)
@@ -107,7 +107,7 @@ class SceneSampler:
             target = str(rng.choice(hws))
         if posture in ("grasp_ag", "grasp_sg"):
             st = getattr(arr, target).state
-            variant = str(rng.choice(["table", "lifted", "held_out"])) if st != "inverted" else "table"
+            variant = str(rng.choice(["table", "lifted", "held_out"])) if st != "inverted" else _inverted_grip(rng, posture)
         if posture == "pointing":
             target = str(rng.choice(["bottle", "glass"]))
         if posture == "none":   # resting where the behaviours put the hand, or where a seated person starts
@@ -162,7 +162,9 @@ class SceneSampler:
         else:
             raise RuntimeError("could not place an object in the HWS")
         st = getattr(new, o).state
-        variant = str(self.rng.choice(["table", "lifted", "held_out"])) if posture.startswith("grasp") and st != "inverted" else "table"
+        variant = "table"
+        if posture.startswith("grasp"):
+            variant = str(self.rng.choice(["table", "lifted", "held_out"])) if st != "inverted" else _inverted_grip(self.rng, posture)
         jitter = tuple(float(v) for v in self.rng.uniform(-0.03, 0.03, 3))
         return SceneSpec(new, head, posture, o, variant, jitter, float(self.rng.uniform(0.35, 0.75)))
 
@@ -203,6 +205,22 @@ def _move_free(world, body: str, pos, R=None) -> None:
             d.qpos[sa + 3:sa + 7] = q
 
 
+def _turn(world, o: str, grip_at, R, fraction: float):
+    """Mid-turn of an inverted glass, as the person's turn-glass behaviour does it: lifted `TURN_LIFT`
+    in a side grip and rolled `fraction` of half a turn about the fingers' direction; the glass
+    follows the hand rigidly.  Returns the hand's new grasp point and orientation."""
+    d = world.data
+    a = -R[:, 2] / np.linalg.norm(R[:, 2])
+    K = np.array([[0, -a[2], a[1]], [a[2], 0, -a[0]], [-a[1], a[0], 0]])
+    ang = -np.pi * fraction
+    Rr = np.eye(3) + np.sin(ang) * K + (1 - np.cos(ang)) * K @ K
+    hand = grip_at + np.array([0, 0, TURN_LIFT])
+    b = world.body_id[o]
+    _move_free(world, o, hand + Rr @ (d.xpos[b] - grip_at), Rr @ d.xmat[b].reshape(3, 3))
+    mujoco.mj_kinematics(world.model, d)
+    return hand, Rr @ R
+
+
 def _set_arm(world, target, R) -> None:
     q = ik(world, "human_r_grasp", target, R, joints=HUMAN_ARM_JOINTS, iters=200)
     for j, v in q.items():
@@ -212,6 +230,11 @@ def _set_arm(world, target, R) -> None:
 def _set_fingers(world, posture: str) -> None:
     for j, v in zip(HUMAN_HAND_JOINTS, HAND_POSTURES[posture]):
         world.data.qpos[_qadr(world, j)] = v
+
+
+def _inverted_grip(rng, posture: str) -> str:
+    """An inverted glass is gripped where it stands, or (a side grip, half the time) mid-turn."""
+    return "turning" if posture == "grasp_sg" and rng.random() < 0.5 else "table"
 
 
 def pose(world, spec: SceneSpec) -> Labels:
@@ -235,7 +258,7 @@ def pose(world, spec: SceneSpec) -> Labels:
             # where the person's hold-out behaviour puts an object's base (measured in episodes: ~1 cm past HOLD_OUT)
             base = np.array([HOLD_OUT[0] + 0.01, HOLD_OUT[1] + jit[1], 0.88]) + np.array([jit[0], 0, 0.5 * jit[2]])
             held_out = True
-        if spec.variant != "table":
+        if spec.variant in ("lifted", "held_out"):
             _move_free(world, o, base)
             mujoco.mj_kinematics(m, d)
         h = GRASP_HEIGHT[(o, grip)]
@@ -243,6 +266,8 @@ def pose(world, spec: SceneSpec) -> Labels:
         R = grip_orientation(grip, target)
         if grip == "sg":
             target = target - 0.8 * layout.OBJECT_RADIUS[o] * R[:, 2] * 0  # grasp site at the object's axis
+        if spec.variant == "turning":
+            target, R = _turn(world, o, target, R, spec.reach_fraction)
         _set_arm(world, target, R)
         _set_fingers(world, grip)
         in_hand = o
