@@ -496,7 +496,7 @@ class Detector:
         # the hand's skin around its end in each camera: the left one, at the template size, is matched
         # against the prototypes; both give their outline's gradient histogram and their thin parts
         # (two views of the fingers)
-        views = []
+        hogs, fingers = [], []
         for img, cam, end in zip(imgs, cams, ends):
             dd = Xd - cam.C
             dist = math.sqrt(dd.dot(dd))          # np.linalg.norm(Xd - C)
@@ -505,12 +505,14 @@ class Detector:
             skin = self.table.region(img[max(0, v - half):v + half, max(0, u - half):u + half], _SKIN_LUT)[1]
             c = _crop(skin.astype(np.float32), 0, 0, skin.shape[1], skin.shape[0], CROP["hand"]) \
                 if skin.size else np.zeros(CROP["hand"][::-1], np.float32)
-            views.append((c, dist, outline_hog(c), finger_parts(skin, dist / cam.K[0, 0] * 100)))
-        crop, depth = views[0][:2]
+            if not hogs:       # the left camera's
+                crop, depth = c, dist
+            hogs.append(outline_hog(c))
+            fingers.append(finger_parts(skin, dist / cam.K[0, 0] * 100))
         px = depth / cams[0].K[0, 0]                                # m per pixel at the hand
         area = a.area * px ** 2 * 1e4                               # cm^2 of skin in view
         shape = [spread[0] * px * 100, spread[1] * px * 100, spread[2] * px * px * 1e4]   # cm, cm, cm^2
-        geo = np.concatenate([self._hand_geo(Xd, Xr, det, area, shape), views[0][2], views[1][2], views[0][3], views[1][3]])
+        geo = np.concatenate([self._hand_geo(Xd, Xr, det, area, shape), *hogs, *fingers])
         return HandDetection(True, Xd, Xr, a, crop, geo, np.asarray(ends[0]))
 
     @staticmethod
