@@ -290,3 +290,25 @@ def test_finger_parts_find_one_long_thin_finger_not_fingers_held_together():
     assert fp[2] >= 15 * cm > fo[2]       # the longest thin piece: the finger (3-px opening)
     assert fp[1] >= 32 * cm * cm * 0.9    # ... and it is the finger's whole area
     assert not finger_parts(np.zeros((0, 0), bool), cm).any()
+
+
+def test_compiled_hand_features_are_opencvs_bit_for_bit():
+    """The gradient histogram and the thin parts run as numba kernels when numba is there: the same
+    values as OpenCV's Sobel/cartToPolar and morphologyEx/connectedComponents, on random masks and
+    crops (every gradient direction, pieces of every shape)."""
+    import cv2
+    from assistbot.vision import segment
+    from assistbot.vision.detect import finger_parts, outline_hog
+    if segment._kernels is None:
+        pytest.skip("numba is not installed: only the OpenCV path runs")
+    rng = np.random.default_rng(8)
+    for i in range(150):
+        m = (rng.random((int(rng.integers(12, 70)), int(rng.integers(12, 70)))) < rng.uniform(0.3, 0.9)).astype(np.uint8)
+        c = cv2.resize(m.astype(np.float32), (24, 24), interpolation=cv2.INTER_AREA) if i % 2 else rng.random((24, 24), np.float32)
+        compiled = outline_hog(c), finger_parts(m.view(bool), 0.4)
+        kernels, segment._kernels = segment._kernels, None
+        try:
+            plain = outline_hog(c), finger_parts(m.view(bool), 0.4)
+        finally:
+            segment._kernels = kernels
+        assert np.array_equal(compiled[0], plain[0]) and np.array_equal(compiled[1], plain[1]), i

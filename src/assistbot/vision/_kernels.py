@@ -344,3 +344,125 @@ def components8(src, lo, hi, x0, y0, x1, y1):
         stats[f, 0], stats[f, 1] = mins[f, 0], mins[f, 1]
         stats[f, 2], stats[f, 3] = maxs[f, 0] - mins[f, 0] + 1, maxs[f, 1] - mins[f, 1] + 1
     return lab, stats, sums
+
+
+@numba.njit(cache=True, nogil=True, inline="always")
+def _row_counts(m):
+    """Per row, the running count of set pixels: c[y, x] = number set in m[y, :x]."""
+    H, W = m.shape
+    c = np.zeros((H, W + 1), np.int32)
+    for y in range(H):
+        for x in range(W):
+            c[y, x + 1] = c[y, x] + (1 if m[y, x] else 0)
+    return c
+
+
+@numba.njit(cache=True, nogil=True)
+def opening_residue(m, spans):
+    """What an opening (erosion, then dilation, as cv2.morphologyEx(MORPH_OPEN) with its default border:
+    pixels outside the image neither erode nor dilate) of the 0/1 mask m by a symmetric structuring
+    element removes: m minus its opening (uint8 0/1).  The element is given as its rows' spans,
+    (dy, dx0, dx1) relative to its centre; a span is tested in O(1) by running counts of each row."""
+    H, W = m.shape
+    c = _row_counts(m)
+    er = np.zeros((H, W), np.uint8)
+    for y in range(H):
+        for x in range(W):
+            if not m[y, x]:
+                continue
+            ok = True
+            for s in range(spans.shape[0]):
+                yy = y + spans[s, 0]
+                a, b = max(0, x + spans[s, 1]), min(W - 1, x + spans[s, 2])
+                if 0 <= yy < H and a <= b and c[yy, b + 1] - c[yy, a] != b - a + 1:
+                    ok = False
+                    break
+            if ok:
+                er[y, x] = 1
+    e = _row_counts(er)
+    out = np.zeros((H, W), np.uint8)
+    for y in range(H):
+        for x in range(W):
+            if not m[y, x]:
+                continue
+            hit = False
+            for s in range(spans.shape[0]):
+                yy = y + spans[s, 0]
+                a, b = max(0, x + spans[s, 1]), min(W - 1, x + spans[s, 2])
+                if 0 <= yy < H and a <= b and e[yy, b + 1] - e[yy, a] > 0:
+                    hit = True
+                    break
+            if not hit:
+                out[y, x] = 1
+    return out
+
+
+@numba.njit(cache=True, nogil=True)
+def thin_pieces(m, spans):
+    """For the residue of an opening of m by each element (spans[k], padded rows with dy = 99 unused):
+    its total area, its largest 8-connected piece's area (the first such piece in OpenCV's numbering)
+    and that piece's bounding box width and height; (k, 4) int64."""
+    out = np.zeros((spans.shape[0], 4), np.int64)
+    H, W = m.shape
+    for k in range(spans.shape[0]):
+        n = 0
+        while n < spans.shape[1] and spans[k, n, 0] != 99:
+            n += 1
+        thin = opening_residue(m, spans[k, :n])
+        _, st, _ = components8(thin, 1, 1, 0, 0, W, H)
+        best = 0
+        for j in range(1, st.shape[0]):
+            out[k, 0] += st[j, 4]
+            if best == 0 or st[j, 4] > st[best, 4]:
+                best = j
+        if best:
+            out[k, 1], out[k, 2], out[k, 3] = st[best, 4], st[best, 2], st[best, 3]
+    return out
+
+
+#: OpenCV's fast arctangent (hal fastAtan32f, in degrees): its polynomial's coefficients, each a float
+#: literal times (float)(180 / pi), multiplied in float32 as OpenCV's static initialisers do
+_ATAN_P = tuple(np.float32(p) * np.float32(180 / np.pi) for p in (0.9997878412794807, -0.3258083974640975,
+                                                                   0.1555786518463281, -0.04432655554792128))
+
+
+@numba.njit(cache=True, nogil=True, inline="always")
+def _fma32(a, b, c):
+    """a * b + c rounded once to float32, as a fused multiply-add (the product is exact in float64)."""
+    return np.float32(np.float64(a) * np.float64(b) + np.float64(c))
+
+
+@numba.njit(cache=True, nogil=True)
+def gradient_histogram(c, cell, bins):
+    """`detect.outline_hog`'s sums: per cell x cell block (row-major) and orientation bin, the gradient
+    magnitude summed in float64 in pixel order, as np.bincount sums them.  The gradient, magnitude
+    and angle as OpenCV computes them: Sobel ksize=1 (central differences, reflected border),
+    cartToPolar (fused multiply-adds, its fast arctangent in degrees times float32(pi / 180))."""
+    H, W = c.shape
+    n = W // cell
+    hist = np.zeros(n * (H // cell) * bins, np.float64)
+    eps = np.float32(2.220446049250313e-16)
+    scale = np.float32(np.pi / 180)
+    tobin = np.float32(bins / np.pi)
+    p1, p3, p5, p7 = _ATAN_P
+    for y in range(H):
+        ym, yp = (y - 1 if y > 0 else 1), (y + 1 if y < H - 1 else H - 2)
+        for x in range(W):
+            xm, xp = (x - 1 if x > 0 else 1), (x + 1 if x < W - 1 else W - 2)
+            gx = np.float32(c[y, xp] - c[y, xm])
+            gy = np.float32(c[yp, x] - c[ym, x])
+            mag = np.float32(np.sqrt(_fma32(gx, gx, np.float32(gy * gy))))
+            ax, ay = abs(gx), abs(gy)
+            q = np.float32(min(ax, ay) / np.float32(max(ax, ay) + eps))
+            qq = np.float32(q * q)
+            a = np.float32(_fma32(_fma32(_fma32(qq, p7, p5), qq, p3), qq, p1) * q)
+            if not ax >= ay:
+                a = np.float32(np.float32(90.0) - a)
+            if gx < 0:
+                a = np.float32(np.float32(180.0) - a)
+            if gy < 0:
+                a = np.float32(np.float32(360.0) - a)
+            ang = np.float32(a * scale)
+            b = int(np.float32(ang * tobin)) % bins
+            hist[((y // cell) * n + x // cell) * bins + b] += np.float64(mag)
+    return hist

@@ -38,6 +38,7 @@ import numpy as np
 
 cv2.setNumThreads(1)   # per-frame work on small images: OpenCV's thread pool costs more than it saves
 
+from assistbot.vision import segment
 from assistbot.vision.camera import CameraModel, expected_boxes, on_plane, triangulate
 from assistbot.vision.segment import (LABEL, Blob, ColourTable, blob_pixels, components_each, count_near, first_row_over,
                                       masked_saturation)
@@ -166,6 +167,9 @@ def outline_hog(crop: np.ndarray) -> np.ndarray:
     matched prototypes score the whole outline; this says where its edges run which way (an index
     finger's two long edges, an open hand's several), which tells reach from pointing."""
     c = crop.astype(np.float32, copy=False)
+    if segment._kernels is not None:    # one compiled pass: OpenCV's gradients and arctangent, its sums
+        out = segment._kernels.gradient_histogram(np.ascontiguousarray(c), HOG_CELL, HOG_BINS).astype(np.float32)
+        return out / (np.linalg.norm(out) + 1e-3)
     # central differences and their polar form: OpenCV's calls, as numpy's cost more than the sums here
     mag, ang = cv2.cartToPolar(cv2.Sobel(c, cv2.CV_32F, 1, 0, ksize=1), cv2.Sobel(c, cv2.CV_32F, 0, 1, ksize=1))
     if c.shape not in _HOG_CELLS:
@@ -182,6 +186,19 @@ def outline_hog(crop: np.ndarray) -> np.ndarray:
 _OPEN = [cv2.getStructuringElement(cv2.MORPH_ELLIPSE, (k, k)) for k in (3, 5)]
 
 
+def _spans(disc: np.ndarray, rows: int) -> np.ndarray:
+    """A structuring element's rows as (dy, dx0, dx1) from its centre, padded to ``rows`` with dy = 99."""
+    out = np.full((rows, 3), 99, np.int64)
+    r = disc.shape[0] // 2
+    for i, y in enumerate(np.flatnonzero(disc.any(axis=1))):
+        xs = np.flatnonzero(disc[y])
+        out[i] = (y - r, xs[0] - r, xs[-1] - r)
+    return out
+
+
+_OPEN_SPANS = np.stack([_spans(d, 5) for d in _OPEN])
+
+
 def finger_parts(skin: np.ndarray, cm_per_px: float) -> np.ndarray:
     """Fingers standing out of the hand, from its full-resolution skin mask: what an opening by a 3-px
     and by a 5-px disc removes (parts under 3 and under 5 px wide), each as its area, its largest
@@ -193,6 +210,11 @@ def finger_parts(skin: np.ndarray, cm_per_px: float) -> np.ndarray:
         return out
     m = skin.view(np.uint8)
     a2 = cm_per_px * cm_per_px
+    if segment._kernels is not None:    # one compiled call: the openings' residues and their pieces
+        for k, (total, largest, w, h) in enumerate(segment._kernels.thin_pieces(m, _OPEN_SPANS).tolist()):
+            if total:
+                out[3 * k:3 * k + 3] = (float(total) * a2, float(largest) * a2, math.hypot(w, h) * cm_per_px)
+        return out
     for k, disc in enumerate(_OPEN):
         thin = cv2.subtract(m, cv2.morphologyEx(m, cv2.MORPH_OPEN, disc))
         n, _, st, _ = cv2.connectedComponentsWithStats(thin, connectivity=8)
@@ -313,6 +335,9 @@ class Detector:
         self.static_cells = np.array(calibration.get("static_skin_cells", []), float).reshape(-1, 3)
         self.arm_root = np.array(calibration["arm_root"], float) if "arm_root" in calibration else None
         self._margin = cv2.getStructuringElement(cv2.MORPH_ELLIPSE, (2 * STATIC_MARGIN + 1,) * 2)
+        if segment._kernels is not None:   # compile (or load from numba's cache) the hand's kernels now, not in the first frame
+            outline_hog(np.zeros(CROP["hand"][::-1], np.float32))
+            finger_parts(np.ones((3, 3), bool), 1.0)
 
     def __call__(self, left: np.ndarray, right: np.ndarray, cams: tuple[CameraModel, CameraModel]) -> Detections:
         imgs = (left, right)
