@@ -276,6 +276,22 @@ def test_accuracy_interval_narrows_with_the_set_and_contains_the_accuracy():
     assert all(np.isnan(wilson(0, 0)))
 
 
+def test_accuracy_by_confidence_sorts_each_report_into_its_band():
+    from assistbot.vision.evaluate import Score
+    s = Score()
+    # (truth, predicted, confidence): two unsure reports, one wrong; three sure ones, all right; a band's top is in it
+    for t, p, c in (("reach", "pointing", 0.4), ("reach", "reach", 0.6), ("none", "none", 0.95), ("pour", "pour", 1.0),
+                    ("drink", "drink", 0.9)):
+        s.truth["hand"].append(t)
+        s.pred["hand"].append(p)
+        s.conf["hand"].append(c)
+    (l0, h0, n0, a0), (_, _, n1, a1), (_, h2, n2, a2) = s.by_confidence("hand")
+    assert (l0, h0, h2) == (0.0, 0.6, 1.0)
+    assert (n0, a0) == (2, 0.5) and (n1, a1) == (1, 1.0) and (n2, a2) == (2, 1.0)
+    assert "0.0-0.6: 50.0% of 2" in s.report()
+    assert s.by_confidence("bottle")[0][2] == 0 and "none" in s.report()
+
+
 def test_finger_parts_find_one_long_thin_finger_not_fingers_held_together():
     import cv2
     from assistbot.vision.detect import finger_parts

@@ -18,6 +18,7 @@ from assistbot.vision.pipeline import LOW_CONFIDENCE
 class Score:
     truth: dict[str, list[str]] = field(default_factory=lambda: {k: [] for k in KINDS})
     pred: dict[str, list[str]] = field(default_factory=lambda: {k: [] for k in KINDS})
+    conf: dict[str, list[float]] = field(default_factory=lambda: {k: [] for k in KINDS})   # the scored reports' confidences
     pos_err: list[float] = field(default_factory=list)
     pos_err_lifted: list[float] = field(default_factory=list)    # objects off the table (in a hand)
     hand_err: list[float] = field(default_factory=list)
@@ -46,12 +47,14 @@ class Score:
                 continue
             self.truth[o].append(labels.objects[o]["state"])
             self.pred[o].append(op.state)
+            self.conf[o].append(float(op.confidence))
         if visible["hand"]:
             if not percept.hand.seen:
                 self.unseen["hand"] += 1
             else:
                 self.truth["hand"].append(labels.posture)
                 self.pred["hand"].append(percept.hand.posture)
+                self.conf["hand"].append(float(percept.hand.confidence))
                 self.hand_err.append(float(np.linalg.norm(np.array(percept.hand.position) - np.array(labels.hand_position))))
 
     def accuracy(self, kind: str | tuple[str, ...]) -> float:
@@ -59,6 +62,18 @@ class Score:
         t = sum((self.truth[k] for k in kinds), [])
         p = sum((self.pred[k] for k in kinds), [])
         return float(np.mean([a == b for a, b in zip(t, p)])) if t else float("nan")
+
+    def by_confidence(self, kind: str, edges=(0.6, 0.9)) -> list[tuple[float, float, int, float]]:
+        """Accuracy per confidence band (lo, hi]: (lo, hi, reports, accuracy), from the lowest band; how
+        far a report's confidence (which weighs cognition's input) says how likely it is right."""
+        c = np.array(self.conf[kind])
+        ok = np.array([a == b for a, b in zip(self.truth[kind], self.pred[kind])], bool)
+        bounds = (0.0, *edges, 1.0)
+        out = []
+        for lo, hi in zip(bounds[:-1], bounds[1:]):
+            sel = (c > lo) & (c <= hi)
+            out.append((lo, hi, int(sel.sum()), float(ok[sel].mean()) if sel.any() else float("nan")))
+        return out
 
     def interval(self, kind: str | tuple[str, ...]) -> tuple[float, float]:
         """The accuracy's 95% Wilson score interval: how far a set of this size pins it down (at
@@ -92,6 +107,8 @@ class Score:
             lines.append("  confusion (rows truth, columns predicted): " + " ".join(c[:8] for c in cl))
             for i, c in enumerate(cl):
                 lines.append(f"  {c:<{w}} " + " ".join(f"{v:>8}" for v in M[i]))
+            lines.append("  accuracy by the report's confidence: " + "; ".join(
+                f"{lo:.1f}-{hi:.1f}: {acc * 100:.1f}% of {k}" if k else f"{lo:.1f}-{hi:.1f}: none" for lo, hi, k, acc in self.by_confidence(kind)))
         for o, v in self.low_conf.items():
             if v:
                 lines.append(f"{o}: {len(v)} seen with a low-confidence state (<= {LOW_CONFIDENCE}: stopper hidden), "
