@@ -242,6 +242,29 @@ def test_a_lifted_bottle_whose_stopper_no_camera_shows_has_its_state_out_of_view
     assert hidden >= 3 and shown >= 1
 
 
+def test_a_hand_that_holds_a_lifted_bottle_may_hide_its_stopper_by_the_same_measure():
+    """The detector keeps a lifted bottle as seen when the hand is within HELD_DIST of its axis; the
+    state then treats the stopper as possibly in that hand, by the same axis distance: with no red in
+    view the state is out of view, not "open".  A hand just above and beside the bottle's top, 22 cm from
+    its middle (where the state once measured from) but under 16 from its axis, is such a hand."""
+    from assistbot.vision.detect import HELD_DIST, Detector, HandDetection, ObjectDetection, axis_distance
+    from assistbot.vision.pipeline import LOW_CONFIDENCE
+    v = Vision()
+    for hand_at, held in (((0.30, 0.15, 0.31), True), ((0.30, 0.45, 0.31), False)):
+        bottle = ObjectDetection("bottle", False, np.array([0.30, 0.0, 0.07]), extent=0.8, tilt=0.1, stopper=(0.0, 0.0),
+                                 feat=np.array([0, 0, 0, 0.1, 0.07], np.float32))
+        bottle.inside = True
+        hand = HandDetection(True, np.array(hand_at))
+        assert (axis_distance(bottle, hand.position) < HELD_DIST) == held
+        Detector._held(bottle, hand)
+        assert bottle.visible == held
+        state, conf, seen = v._state("bottle", bottle, hand)
+        if held:
+            assert not seen and conf <= LOW_CONFIDENCE
+        else:
+            assert (state, seen) == ("open", True)
+
+
 def test_segmentation_labels_split_skin_and_shirt(world):
     from assistbot.world.render import SEGMENT_LABELS, Renderer
     inv = {v: k for k, v in SEGMENT_LABELS.items()}

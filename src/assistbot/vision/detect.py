@@ -225,6 +225,15 @@ def finger_parts(skin: np.ndarray, cm_per_px: float) -> np.ndarray:
     return out
 
 
+def axis_distance(o: ObjectDetection, X: np.ndarray) -> float:
+    """The distance (m) of point X (the hand's end) from an upright object's axis, base to top: from the
+    axis point at X's height, or its end below or above.  A grip from above holds the top, whose fingers
+    reach past it, a side grip the middle: both within `HELD_DIST` of the axis."""
+    base = o.position
+    rise = min(max(float(X[2] - base[2]), 0.0), HEIGHT[o.name])
+    return float(np.linalg.norm(X - (base + [0.0, 0.0, rise])))
+
+
 def _rim_to_axis(cam: CameraModel, uv, z: float, r: float) -> tuple[float, float, float]:
     """Where the ray through pixel uv, the front of a rim at height z, meets that height, moved
     horizontally by r away from the camera: the axis of an upright object of radius r whose
@@ -364,12 +373,7 @@ class Detector:
         """A lifted object is seen only in the hand (else: a hidden bottom edge, a bad match)."""
         if o.visible or o.on_table or o.position is None or not o.inside or not hand.visible:
             return
-        # the hand's distance from the object's axis, base to top: a grip from above holds its top, whose
-        # fingers (the hand's far end) reach past it, a side grip its middle
-        base = o.position
-        rise = min(max(float(hand.position[2] - base[2]), 0.0), HEIGHT[o.name])
-        near = base + [0.0, 0.0, rise]
-        o.visible = bool(np.linalg.norm(hand.position - near) < HELD_DIST and MIN_EXTENT_HELD <= o.extent <= MAX_EXTENT
+        o.visible = bool(axis_distance(o, hand.position) < HELD_DIST and MIN_EXTENT_HELD <= o.extent <= MAX_EXTENT
                          and o.tilt < MAX_TILT and o.position[2] > 0.02)
 
     # ------------------------------------------------------------------ objects

@@ -26,7 +26,7 @@ from assistbot.cognition.percept import HandPercept, ObjectPercept, Percept
 from assistbot.task import OBJECT_STATES
 from assistbot.vision import library
 from assistbot.vision.capture import StereoFrame
-from assistbot.vision.detect import CENTROID_Z, HELD_DIST, MAX_TILT, Detections, Detector
+from assistbot.vision.detect import HELD_DIST, MAX_TILT, Detections, Detector, axis_distance
 from assistbot.world.layout import zone_of
 
 HELD_OUT_X = -0.20          # a raised hand beyond this x (toward the robot) is held out
@@ -121,9 +121,9 @@ class Vision:
             state, conf, _ = self.classifiers[name].classify(d.crop, d.feat)
             return state, conf, True
         hand_at_top = bool(hand.visible and _norm(hand.position - (d.position + [0, 0, 0.19])) < HAND_AT_TOP)
-        # lifted in the person's hand: a grip from above covers the stopper wherever vision puts the hand
-        hand_at_top |= bool(hand.visible and not d.on_table
-                            and _norm(hand.position - (d.position + [0, 0, CENTROID_Z["bottle"]])) < HELD_DIST)
+        # lifted in the person's hand (as `Detector._held` tells it): a grip from above covers the stopper
+        # wherever vision puts the hand
+        hand_at_top |= bool(hand.visible and not d.on_table and axis_distance(d, hand.position) < HELD_DIST)
         both = min(d.stopper) >= STOPPER_SEEN
         one = max(d.stopper) >= STOPPER_SEEN
         if both:
