@@ -27,6 +27,7 @@ class Score:
     render_ms: list[float] = field(default_factory=list)
     process_ms: list[float] = field(default_factory=list)
     process_cpu_ms: list[float] = field(default_factory=list)
+    process_warm_ms: list[float] = field(default_factory=list)   # the same pair processed again at once
     frames: int = 0
 
     def add(self, percept, labels, visible: dict[str, bool]) -> None:
@@ -128,6 +129,9 @@ class Score:
         if self.process_cpu_ms:
             lines.append(f"processing CPU time per stereo pair: {np.median(self.process_cpu_ms):.2f} ms (median), "
                          f"{np.percentile(self.process_cpu_ms, 95):.2f} (95th) -- wall times above include waiting for a shared CPU")
+        if self.process_warm_ms:
+            lines.append(f"processing the same pair again at once: {np.median(self.process_warm_ms):.2f} ms (median) -- the code's "
+                         "own cost with its data and code in the CPU caches, which each render evicts; the goal is for the figure above")
         return "\n".join(lines)
 
 
@@ -183,6 +187,8 @@ def run(n: int, seed: int = 0, purpose: str = "bench", progress=None, root=None)
             score.render_ms.append(f.render_ms)
             score.process_ms.append(vision.timing.process_ms)
             score.process_cpu_ms.append(vision.timing.process_cpu_ms)
+            vision.perceive(f)
+            score.process_warm_ms.append(vision.timing.process_ms)
             if progress:
                 progress(i + 1, n)
     return score
