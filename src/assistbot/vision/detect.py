@@ -167,13 +167,14 @@ def outline_hog(crop: np.ndarray) -> np.ndarray:
     matched prototypes score the whole outline; this says where its edges run which way (an index
     finger's two long edges, an open hand's several), which tells reach from pointing."""
     c = crop.astype(np.float32, copy=False)
-    if segment._kernels is not None:    # one compiled pass: OpenCV's gradients and arctangent, its sums
+    h, w = c.shape
+    if segment._kernels is not None and h % HOG_CELL == 0 and w % HOG_CELL == 0:   # whole cells (the template: 24 x 24)
+        # one compiled pass: OpenCV's gradients and arctangent, its sums
         out = segment._kernels.gradient_histogram(np.ascontiguousarray(c), HOG_CELL, HOG_BINS).astype(np.float32)
         return out / (np.linalg.norm(out) + 1e-3)
     # central differences and their polar form: OpenCV's calls, as numpy's cost more than the sums here
     mag, ang = cv2.cartToPolar(cv2.Sobel(c, cv2.CV_32F, 1, 0, ksize=1), cv2.Sobel(c, cv2.CV_32F, 0, 1, ksize=1))
     if c.shape not in _HOG_CELLS:
-        h, w = c.shape
         n = w // HOG_CELL
         _HOG_CELLS[c.shape] = (((np.arange(h)[:, None] // HOG_CELL) * n + np.arange(w)[None, :] // HOG_CELL).ravel() * HOG_BINS,
                                n * (h // HOG_CELL) * HOG_BINS)
