@@ -357,6 +357,24 @@ def _row_counts(m):
     return c
 
 
+@numba.njit(cache=True, nogil=True, inline="always")
+def _spans_test(c, y, x, spans, all_set):
+    """The structuring element's spans placed at (y, x), the parts inside the image, tested by a mask's
+    running counts c: whether every span is wholly set (``all_set``: erosion keeps the pixel), or else
+    whether any span has a set pixel (dilation sets it)."""
+    H, W = c.shape[0], c.shape[1] - 1
+    for s in range(spans.shape[0]):
+        yy = y + spans[s, 0]
+        a, b = max(0, x + spans[s, 1]), min(W - 1, x + spans[s, 2])
+        if 0 <= yy < H and a <= b:
+            n = c[yy, b + 1] - c[yy, a]
+            if all_set and n != b - a + 1:
+                return False
+            if not all_set and n > 0:
+                return True
+    return all_set
+
+
 @numba.njit(cache=True, nogil=True)
 def opening_residue(m, spans):
     """What an opening (erosion, then dilation, as cv2.morphologyEx(MORPH_OPEN) with its default border:
@@ -368,31 +386,13 @@ def opening_residue(m, spans):
     er = np.zeros((H, W), np.uint8)
     for y in range(H):
         for x in range(W):
-            if not m[y, x]:
-                continue
-            ok = True
-            for s in range(spans.shape[0]):
-                yy = y + spans[s, 0]
-                a, b = max(0, x + spans[s, 1]), min(W - 1, x + spans[s, 2])
-                if 0 <= yy < H and a <= b and c[yy, b + 1] - c[yy, a] != b - a + 1:
-                    ok = False
-                    break
-            if ok:
+            if m[y, x] and _spans_test(c, y, x, spans, True):
                 er[y, x] = 1
     e = _row_counts(er)
     out = np.zeros((H, W), np.uint8)
     for y in range(H):
         for x in range(W):
-            if not m[y, x]:
-                continue
-            hit = False
-            for s in range(spans.shape[0]):
-                yy = y + spans[s, 0]
-                a, b = max(0, x + spans[s, 1]), min(W - 1, x + spans[s, 2])
-                if 0 <= yy < H and a <= b and e[yy, b + 1] - e[yy, a] > 0:
-                    hit = True
-                    break
-            if not hit:
+            if m[y, x] and not _spans_test(e, y, x, spans, False):
                 out[y, x] = 1
     return out
 
