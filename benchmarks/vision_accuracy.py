@@ -4,8 +4,9 @@ Renders N (default 500) stereo pairs of random arrangements, object positions, h
 and head angles from the "bench" seed stream (the template library uses the "library"
 stream, so no benchmark frame was used to build templates), runs the vision pipeline, and
 prints per-class precision/recall, confusion matrices for object states and hand postures,
-object position error (median, 95th percentile) and milliseconds per stereo pair for
-rendering and for processing.  Labels come from WorldState and the posed scene spec.
+the accuracy per band of the reports' confidence, object position error (median, 95th
+percentile) and milliseconds per stereo pair for rendering and for processing (right after the
+pair's render, as in the loop; and the same pair again at once, with warm caches).  Labels come from WorldState and the posed scene spec.
 An object counts when both cameras show >= 25 of its pixels (renderer segmentation); the hand
 when both show >= 25 skin pixels within 6 cm of its grasp site.  Object states reported with a
 low confidence (the stopper hidden in the hand) are listed apart from the scored ones; the
