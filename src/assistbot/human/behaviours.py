@@ -314,6 +314,16 @@ def pull_stopper(c, timeout: float = 3.0, wait_for_robot: float = 0.0) -> Gen:
     return True, "stopper removed"
 
 
+def turn_roll(R: np.ndarray, fraction: float) -> np.ndarray:
+    """The rotation that rolls a side grip of hand orientation R by ``fraction`` of the glass's half
+    turn, about the fingers' direction (Rodrigues' formula): what turn_glass does to the hand."""
+    axis = -R[:, 2]
+    a = axis / np.linalg.norm(axis)
+    K = np.array([[0, -a[2], a[1]], [a[2], 0, -a[0]], [-a[1], a[0], 0]])
+    ang = -np.pi * fraction
+    return np.eye(3) + np.sin(ang) * K + (1 - np.cos(ang)) * K @ K
+
+
 def turn_glass(c) -> Gen:
     """Turn an inverted glass upright in the HWS: side grip, lift, roll half a turn, put down."""
     if _axis(c, "glass")[2] > 0:
@@ -324,13 +334,8 @@ def turn_glass(c) -> Gen:
         return False, why
     hand, R = c.arm.hand_pose()
     yield from _move(c, hand + np.array([0, 0, TURN_LIFT]), R)
-    axis = -R[:, 2]  # fingers' direction: roll about it
-    a = axis / np.linalg.norm(axis)
-    K = np.array([[0, -a[2], a[1]], [a[2], 0, -a[0]], [-a[1], a[0], 0]])
     for frac in (0.5, 1.0):
-        ang = -np.pi * frac
-        Rr = np.eye(3) + np.sin(ang) * K + (1 - np.cos(ang)) * K @ K
-        yield from _move(c, hand + np.array([0, 0, TURN_LIFT]), Rr @ R, speed=0.1)
+        yield from _move(c, hand + np.array([0, 0, TURN_LIFT]), turn_roll(R, frac) @ R, speed=0.1)
     ok, why = yield from put_down(c, "glass", at=tuple(base0[:2]))
     up = _axis(c, "glass")[2] > 0.9
     return bool(ok and up), "glass upright" if up else "the glass is not upright"

@@ -21,7 +21,7 @@ import mujoco
 import numpy as np
 
 from assistbot.human.arm import ORIENT, SHOULDER_XY, grip_orientation, rot_y, rot_z
-from assistbot.human.behaviours import GRASP_HEIGHT, HOLD_OUT, REST, TURN_LIFT
+from assistbot.human.behaviours import GRASP_HEIGHT, HOLD_OUT, REST, TURN_LIFT, turn_roll
 from assistbot.world import HAND_POSTURES, HUMAN_ARM_JOINTS, HUMAN_HAND_JOINTS, layout
 from assistbot.world.arrangement import Arrangement, Placement
 from assistbot.world.scripted import ik
@@ -210,10 +210,7 @@ def _turn(world, o: str, grip_at, R, fraction: float):
     in a side grip and rolled `fraction` of half a turn about the fingers' direction; the glass
     follows the hand rigidly.  Returns the hand's new grasp point and orientation."""
     d = world.data
-    a = -R[:, 2] / np.linalg.norm(R[:, 2])
-    K = np.array([[0, -a[2], a[1]], [a[2], 0, -a[0]], [-a[1], a[0], 0]])
-    ang = -np.pi * fraction
-    Rr = np.eye(3) + np.sin(ang) * K + (1 - np.cos(ang)) * K @ K
+    Rr = turn_roll(R, fraction)
     hand = grip_at + np.array([0, 0, TURN_LIFT])
     b = world.body_id[o]
     _move_free(world, o, hand + Rr @ (d.xpos[b] - grip_at), Rr @ d.xmat[b].reshape(3, 3))
