@@ -211,7 +211,8 @@ def test_new_postures_pose_their_objects():
 
 
 def test_turning_scene_holds_the_inverted_glass_mid_turn_in_a_side_grip():
-    """The person's turn-glass behaviour, posed: the glass lifted in the hand and rolled part of the way."""
+    """The person's turn-glass behaviour, posed: the glass lifted in the hand and rolled part of the way;
+    its state label is WorldState's: inverted while the glass points within 45 deg of down, then not."""
     import dataclasses
     from assistbot.human.behaviours import TURN_LIFT
     from assistbot.world import Arrangement, Placement
@@ -228,6 +229,9 @@ def test_turning_scene_holds_the_inverted_glass_mid_turn_in_a_side_grip():
         assert lab.posture == "grasp_sg" and lab.object_in_hand == "glass"
         assert np.degrees(np.arccos(np.clip(axis @ upright, -1, 1))) == pytest.approx(90, abs=5)   # half of half a turn
         assert lab.objects["glass"]["position"][2] > z0 + 0.5 * TURN_LIFT
+        assert lab.objects["glass"]["state"] == w.state().glass_state == "empty"
+    early = pose(w, dataclasses.replace(spec, arrangement=arr, target="glass", variant="turning", reach_fraction=0.1))
+    assert early.objects["glass"]["state"] == w.state().glass_state == "inverted"
 
 
 def test_a_lifted_bottle_whose_stopper_no_camera_shows_has_its_state_out_of_view(world):

@@ -404,7 +404,8 @@ def labels_of(world, spec: SceneSpec, in_hand: str | None, held_out: bool) -> La
         p[2] -= layout.TABLE_Z
         if os_.inverted:     # the base it stands on is the rim side: GLASS_HEIGHT below the body origin
             p[2] -= layout.GLASS_HEIGHT
-        state = spec.arrangement.bottle.state if o == "bottle" else spec.arrangement.glass.state
+        # WorldState's words: a glass rolled past 45 deg from upside down (mid-turn) is no longer "inverted"
+        state = st.bottle_state if o == "bottle" else st.glass_state
         held = "human" if in_hand == o else ("robot" if spec.robot_holds == o else None)
         zone = "RWS" if held == "robot" else ("HWS" if held == "human" and not held_out else layout.zone_of(p[0]))
         lab.objects[o] = {"state": state, "zone": zone, "position": tuple(float(v) for v in p), "held_by": held}
