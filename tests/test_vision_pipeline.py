@@ -71,6 +71,35 @@ def test_object_in_the_robot_gripper_is_held_or_unseen_not_misplaced(world):
     assert lab.objects["glass"]["held_by"] == "robot"
 
 
+@pytest.mark.parametrize("seed,name,dz", [(1, "bottle", -0.06), (0, "glass", 0.0), (3, "bottle", 0.08), (4, "glass", -0.06)])
+def test_object_behind_the_robot_arm_is_unseen_or_in_place_not_misplaced(seed, name, dz):
+    """The robot's gripper put (by IK) on the line from the left camera to the object, in front of
+    its middle, base (dz < 0) or top: the object is reported unseen or within 3 cm of where it
+    stands.  (1, bottle, -0.06) hides the base in both cameras at different heights; placing its
+    lowest visible rows on the table put it 6 cm too far before the bottoms' rows were compared.)"""
+    import mujoco
+    from assistbot.world import layout
+    from assistbot.world.render import SEGMENT_LABELS
+    from assistbot.world.scripted import ik
+    w = build_world(PAPER_ARRANGEMENTS["fig3"], 0)
+    label = {v: k for k, v in SEGMENT_LABELS.items()}[name]
+    lab = pose(w, SceneSampler(seed, "test").sample("none"))
+    truth = np.array(lab.objects[name]["position"])
+    with StereoCapture(w.model, threaded=False) as cap:
+        before = int(np.count_nonzero(cap.segmentation(w.data)[0] == label))
+        eye = w.data.cam_xpos[w.model.camera("head_cam_left").id].copy()
+        middle = truth + np.array([0.0, 0.0, layout.TABLE_Z + 0.05 + dz])
+        q = ik(w, "robot_tcp", eye + 0.6 * (middle - eye), None, joints=tuple(f"robot_j{i}" for i in range(1, 8)), iters=300)
+        for j, v in q.items():
+            w.data.qpos[w.model.jnt_qposadr[w.model.joint(j).id]] = v
+        mujoco.mj_kinematics(w.model, w.data)
+        after = int(np.count_nonzero(cap.segmentation(w.data)[0] == label))
+        o = Vision().perceive(cap.grab(w.data)).objects[name]
+    assert after < 0.9 * before          # the arm hides part of it
+    if o.seen:
+        assert np.linalg.norm(np.array(o.position) - truth) < 0.03, (o.position, truth)
+
+
 def test_standing_object_with_its_base_hidden_in_one_camera_is_placed_not_dropped(world):
     """The robot's gripper in front of a standing object's base in one camera (a grey bar over its
     silhouette's lowest part): placed where the other camera sees its base, not reported unseen;
@@ -369,3 +398,58 @@ def test_compiled_hand_features_are_opencvs_bit_for_bit():
         finally:
             segment._kernels = kernels
         assert np.array_equal(compiled[0], plain[0]) and np.array_equal(compiled[1], plain[1]), i
+
+
+def test_robot_arm_image_is_the_same_compiled_or_not(monkeypatch):
+    """`RobotBody.covers` (the arm's capsules in a camera's image) gives the same answers from its
+    numba kernel and from numpy, over random arm poses and pixels that it covers and that it does not."""
+    import mujoco
+    from assistbot.vision import segment
+    from assistbot.vision.body import RobotBody
+    if segment._kernels is None:
+        pytest.skip("numba is not installed: only the numpy path runs")
+    w = build_world(PAPER_ARRANGEMENTS["fig3"], 0)
+    rng = np.random.default_rng(4)
+    answers = []
+    with StereoCapture(w.model) as cap:
+        for _ in range(40):
+            for i in range(1, 8):
+                w.data.qpos[w.model.jnt_qposadr[w.model.joint(f"robot_j{i}").id]] = rng.uniform(-1.2, 1.2)
+            mujoco.mj_kinematics(w.model, w.data)
+            body = RobotBody.of(w.model, w.data)
+            for cam in cap.cameras(w.data):
+                for _ in range(5):
+                    pts = rng.uniform((0, 0), (cam.width, cam.height), (int(rng.integers(1, 4)), 2))
+                    compiled = body.covers(cam, pts)
+                    with monkeypatch.context() as m:
+                        m.setattr(segment, "_kernels", None)
+                        assert body.covers(cam, pts) == compiled
+                    answers.append(compiled)
+    assert 0.2 < np.mean(answers) < 0.8
+
+
+def test_robot_body_covers_the_arms_pixels_in_the_render():
+    """The capsules stand for the arm as the renderer draws it: most of the arm's rendered pixels
+    (segmentation label "robot", the base left out) lie on them, and most of their pixels are arm."""
+    import mujoco
+    from assistbot.vision.body import RobotBody
+    from assistbot.world.render import SEGMENT_LABELS
+    from assistbot.world.scripted import ik
+    w = build_world(PAPER_ARRANGEMENTS["fig3"], 0)
+    robot = {v: k for k, v in SEGMENT_LABELS.items()}["robot"]
+    with StereoCapture(w.model) as cap:
+        q = ik(w, "robot_tcp", np.array([0.1, 0.05, 0.95]), None, joints=tuple(f"robot_j{i}" for i in range(1, 8)), iters=300)
+        for j, v in q.items():
+            w.data.qpos[w.model.jnt_qposadr[w.model.joint(j).id]] = v
+        mujoco.mj_kinematics(w.model, w.data)
+        body, cam = RobotBody.of(w.model, w.data), cap.cameras(w.data)[0]
+        seg = cap.segmentation(w.data)[0]
+    vv, uu = np.mgrid[0:cam.height:2, 0:cam.width:2]
+    on = np.array([body.covers(cam, p) for p in np.column_stack([uu.ravel() + 0.5, vv.ravel() + 0.5])]).reshape(vv.shape)
+    arm = seg[::2, ::2] == robot
+    arm[int(0.75 * arm.shape[0]):] = False          # the image's bottom rows: the robot's base and torus
+    on_low = on.copy()
+    on_low[int(0.75 * on.shape[0]):] = False
+    assert arm.sum() > 500
+    assert (arm & on).sum() / arm.sum() > 0.85
+    assert (arm & on_low).sum() / on_low.sum() > 0.7

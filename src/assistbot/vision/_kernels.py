@@ -466,3 +466,30 @@ def gradient_histogram(c, cell, bins):
             b = int(np.float32(ang * tobin)) % bins
             hist[((y // cell) * n + x // cell) * bins + b] += np.float64(mag)
     return hist
+
+
+@numba.njit(cache=True, nogil=True)
+def capsules_cover(a, b, r, P, f, margin, pts):
+    """`body.RobotBody.covers`: whether any pixel of pts (M, 2) lies on the image of a capsule (ends
+    a, b (N, 3), radius r, in the frame of the camera matrix P (3, 4)): its ends projected, the
+    segment between them widened by f * r over the nearer end's depth plus margin px.  The same
+    sums in the same order as the numpy path."""
+    for i in range(r.shape[0]):
+        za = P[2, 0] * a[i, 0] + P[2, 1] * a[i, 1] + P[2, 2] * a[i, 2] + P[2, 3]
+        zb = P[2, 0] * b[i, 0] + P[2, 1] * b[i, 1] + P[2, 2] * b[i, 2] + P[2, 3]
+        if not (za > 1e-6 and zb > 1e-6):
+            continue                     # (partly) behind the camera
+        ua = (P[0, 0] * a[i, 0] + P[0, 1] * a[i, 1] + P[0, 2] * a[i, 2] + P[0, 3]) / za
+        va = (P[1, 0] * a[i, 0] + P[1, 1] * a[i, 1] + P[1, 2] * a[i, 2] + P[1, 3]) / za
+        ub = (P[0, 0] * b[i, 0] + P[0, 1] * b[i, 1] + P[0, 2] * b[i, 2] + P[0, 3]) / zb
+        vb = (P[1, 0] * b[i, 0] + P[1, 1] * b[i, 1] + P[1, 2] * b[i, 2] + P[1, 3]) / zb
+        rad = f * r[i] / min(za, zb) + margin
+        dx, dy = ub - ua, vb - va
+        L2 = max(dx * dx + dy * dy, 1e-12)
+        for j in range(pts.shape[0]):
+            px, py = pts[j, 0] - ua, pts[j, 1] - va
+            t = min(max((px * dx + py * dy) / L2, 0.0), 1.0)
+            ex, ey = px - t * dx, py - t * dy
+            if ex * ex + ey * ey < rad * rad:
+                return True
+    return False

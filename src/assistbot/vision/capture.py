@@ -2,7 +2,8 @@
 
 `StereoCapture.grab(data)` renders head_cam_left and head_cam_right (default 320x240, no
 shadows) and returns a `StereoFrame` with the two RGB images and the two `CameraModel`s taken
-from the same ``data`` (so the extrinsics match the head pose of the images).  A seeded
+from the same ``data`` (so the extrinsics match the head pose of the images), and the robot arm's
+shape where its joints put it (`body.RobotBody`: the robot knows its own body).  A seeded
 dropout probability drops whole frames (``frame.dropped``: no images): vision then reports
 everything as not seen.
 
@@ -23,6 +24,7 @@ from dataclasses import dataclass, field
 import mujoco
 import numpy as np
 
+from assistbot.vision.body import RobotBody
 from assistbot.vision.camera import CameraModel
 from assistbot.world.render import Renderer, RenderThread
 
@@ -59,6 +61,7 @@ class StereoFrame:
     dropped: bool = False
     render_ms: float = 0.0
     meta: dict = field(default_factory=dict)
+    body: RobotBody | None = None      # the robot's own shape where its joints put it (proprioception)
 
 
 class StereoCapture:
@@ -100,11 +103,12 @@ class StereoCapture:
         cams = self.cameras(data)
         if self._dropped():
             return StereoFrame(float(data.time), None, None, cams, dropped=True)
+        body = RobotBody.of(self.model, data)
         t0 = time.perf_counter()
         left = self.renderer.rgb(data, CAMERAS[0])
         right = self.renderer.rgb(data, CAMERAS[1])
         ms = (time.perf_counter() - t0) * 1000.0
-        return StereoFrame(float(data.time), left, right, cams, render_ms=ms)
+        return StereoFrame(float(data.time), left, right, cams, render_ms=ms, body=body)
 
     def start(self, data: mujoco.MjData, meta: dict | None = None) -> StereoFrame:
         """Take the pair now; its images are drawn on the render thread (``threaded=True`` only)
@@ -113,7 +117,8 @@ class StereoCapture:
             raise RuntimeError("StereoCapture.start needs threaded=True")
         if self._pending is not None:
             raise RuntimeError("StereoCapture.start: collect the frame started before first")
-        frame = StereoFrame(float(data.time), None, None, self.cameras(data), meta=dict(meta or {}))
+        frame = StereoFrame(float(data.time), None, None, self.cameras(data), meta=dict(meta or {}),
+                            body=RobotBody.of(self.model, data))
         if self._dropped():
             frame.dropped = True
             return frame

@@ -19,6 +19,10 @@ coordinates (m): an object's position is the centre of the base it stands on.
   table, is visible if it stands: its axis, triangulated from the rows that show its full width in
   both images, within `BASE_AGREE` of where each whole camera's base ray meets the table; it is
   placed by those rays.  A half-hidden object is reported unseen, not misplaced.
+* A silhouette whose lowest row lies on the robot's own arm (`vision.body`: the arm's shape where
+  its joints put it, which the robot knows) is not whole in that camera: the arm may hide its base,
+  and its lowest row, placed on the table, would put it too far.  Nor is such an object taken for
+  one lifted in the hand.
 * The working hand: skin blobs, less the static skin (the resting left arm, the face) that the
   calibration located.  Its cloud of cells, projected into each image, takes the static skin's
   pixels out of the skin label before the blobs are found, so that a working hand touching the
@@ -39,6 +43,7 @@ import numpy as np
 cv2.setNumThreads(1)   # per-frame work on small images: OpenCV's thread pool costs more than it saves
 
 from assistbot.vision import segment
+from assistbot.vision.body import RobotBody
 from assistbot.vision.camera import CameraModel, expected_boxes, on_plane, triangulate
 from assistbot.vision.segment import (LABEL, Blob, ColourTable, blob_pixels, components_each, count_near, first_row_over,
                                       masked_saturation)
@@ -57,6 +62,7 @@ HEIGHT = {"bottle": 0.194, "glass": 0.10}   # the bottle without its (red) stopp
 CROP = {"glass": (16, 20), "hand": (24, 24)}   # template sizes (w, h)
 ON_TABLE_TOL = 0.03
 BASE_AGREE = 0.02          # m: a standing object's axis is where a camera that sees its base puts that base
+BELOW_PX = 2.0             # px under a silhouette's lowest row where the robot's arm, if it is there, hides the base
 FACE_Z = 0.40              # m above the table: skin higher than this is the face, not the working hand
 STATIC_SKIN_R = 0.08       # m: skin this close to a calibrated static spot is not the working hand
 STATIC_MARGIN = 2          # half-resolution px (~1-2 cm at the table) around the static cells' projections
@@ -90,6 +96,7 @@ class ObjectDetection:
     top: np.ndarray | None = None       # triangulated top-centre point (m)
     on_table: bool = False
     inside: bool = False                # off the image borders in both cameras
+    on_robot: bool = False              # its silhouette ends on the robot's arm in a camera (its base may be hidden)
 
 
 @dataclass
@@ -287,6 +294,7 @@ class _Roi:
         self.h = float(bh)
         # the bottom (top) two rows' leftmost and rightmost pixels
         self.bottom = np.array([self.x0 + bl + 0.5 * (br - bl), self.y0 + self.bot_r + 0.5])
+        self._bottom_lr = (self.x0 + bl + 0.5, self.x0 + br + 0.5)
         self.top = np.array([self.x0 + tl + 0.5 * (tr - tl), self.y0 + self.top_r - 0.5])
         n, m10, m01, mu20, mu11, mu02 = mom.tolist()     # as cv2.moments(binaryImage=True) gives them
         self.centroid = np.array([m10 / n + self.x0 + 0.5, m01 / n + self.y0 + 0.5])
@@ -301,6 +309,12 @@ class _Roi:
         self.area = float(n)
         self.h_capped = self.h
         self._axis: tuple[np.ndarray, np.ndarray] | None = None
+
+    def below(self) -> np.ndarray:
+        """Pixels just under the silhouette's lowest row, at its ends and middle: what it stands on,
+        or what hides its base."""
+        v = self.y0 + self.bot_r + 0.5 + BELOW_PX
+        return np.array([[self._bottom_lr[0], v], [self.bottom[0], v], [self._bottom_lr[1], v]])
 
     def cap(self, part: int) -> None:
         """Count pixels of ``part`` right on top of the silhouette (a stopper in the bottle's neck, which
@@ -345,11 +359,16 @@ class Detector:
         self.static_cells = np.array(calibration.get("static_skin_cells", []), float).reshape(-1, 3)
         self.arm_root = np.array(calibration["arm_root"], float) if "arm_root" in calibration else None
         self._margin = cv2.getStructuringElement(cv2.MORPH_ELLIPSE, (2 * STATIC_MARGIN + 1,) * 2)
-        if segment._kernels is not None:   # compile (or load from numba's cache) the hand's kernels now, not in the first frame
+        if segment._kernels is not None:   # compile (or load from numba's cache) the hand's and the arm's kernels now, not in the first frame
             outline_hog(np.zeros(CROP["hand"][::-1], np.float32))
             finger_parts(np.ones((3, 3), bool), 1.0)
+            z = np.zeros((1, 3))
+            segment._kernels.capsules_cover(z, z, np.zeros(1), np.eye(3, 4), 1.0, 1.0, np.zeros((1, 2)))
 
-    def __call__(self, left: np.ndarray, right: np.ndarray, cams: tuple[CameraModel, CameraModel]) -> Detections:
+    def __call__(self, left: np.ndarray, right: np.ndarray, cams: tuple[CameraModel, CameraModel],
+                 body: RobotBody | None = None) -> Detections:
+        """body: the robot's own shape in this pair (see `vision.body`); without it, no silhouette
+        edge is taken for the robot's."""
         imgs = (left, right)
         # half-resolution labels without the static skin, the masks of bottle, glass (or liquid) and skin, their boxes
         spots = [self.static_spots(cam) if len(self.static_cells) else None for cam in cams]
@@ -359,7 +378,7 @@ class Detector:
         found, views = components_each(masks, ("bottle", "glass", "skin"), (2, 2, 6), pairs_only=True, views_of=(2,), boxes=boxes)
         blobs = [{"bottle": f[0], "glass": f[1], "skin": (f[2], v[2])} for f, v in zip(found, views)]
         for name in ("bottle", "glass"):
-            det.objects[name] = self._object(name, blobs, imgs, cams)
+            det.objects[name] = self._object(name, blobs, imgs, cams, body)
         det.hand = self._hand(blobs, lab, imgs, cams, det)
         for o in det.objects.values():
             self._held(o, det.hand)
@@ -372,13 +391,13 @@ class Detector:
     @staticmethod
     def _held(o: ObjectDetection, hand: HandDetection) -> None:
         """A lifted object is seen only in the hand (else: a hidden bottom edge, a bad match)."""
-        if o.visible or o.on_table or o.position is None or not o.inside or not hand.visible:
-            return
+        if o.visible or o.on_table or o.position is None or not o.inside or not hand.visible or o.on_robot:
+            return      # (one whose silhouette ends on the robot's arm may stand behind it: its bottoms say nothing)
         o.visible = bool(axis_distance(o, hand.position) < HELD_DIST and MIN_EXTENT_HELD <= o.extent <= MAX_EXTENT
                          and o.tilt < MAX_TILT and o.position[2] > 0.02)
 
     # ------------------------------------------------------------------ objects
-    def _object(self, name, blobs, imgs, cams) -> ObjectDetection:
+    def _object(self, name, blobs, imgs, cams, body: RobotBody | None = None) -> ObjectDetection:
         bl, br = blobs[0][name], blobs[1][name]
         if not bl or not br:
             return ObjectDetection(name, False, blobs=(bl[0] if bl else None, None))
@@ -420,6 +439,9 @@ class Detector:
             ins.append(x > 1 and y > 1 and x + w < W - 1 and y + h < H - 1)
         extent, inside = min(9.0, *exts), ins[0] and ins[1]
         whole = [i and MIN_EXTENT <= e <= MAX_EXTENT for e, i in zip(exts, ins)]
+        on_robot = [body is not None and body.covers(cam, roi.below()) for cam, roi in zip(cams, rois)]
+        # a silhouette that ends on the robot's arm: its lowest row is the arm's edge, not its base
+        whole = [w and not r for w, r in zip(whole, on_robot)]
         tilt = max(roi.upright_tilt() for roi in rois)
         # standing on the table and whole; a lifted one is decided once the hand is known (`_held`)
         visible = bool(on_table and whole[0] and whole[1] and tilt < MAX_TILT)
@@ -435,7 +457,7 @@ class Detector:
                 pos = np.array([sum(p[0] for p in whole_bases), sum(p[1] for p in whole_bases), 0.0]) / len(whole_bases)
                 on_table = visible = True
         det = ObjectDetection(name, visible, pos, (a, b), extent=float(extent), tilt=float(tilt), top=Xt)
-        det.on_table, det.inside = on_table, inside
+        det.on_table, det.inside, det.on_robot = on_table, inside, any(on_robot)
         self._object_features(det, rois, cams, pos)
         return det
 

@@ -91,7 +91,7 @@ class Vision:
             p.hand = HandPercept(seen=False, confidence=0.0)
             self.last = None
             return p
-        det = self.detector(frame.left, frame.right, frame.cams)
+        det = self.detector(frame.left, frame.right, frame.cams, frame.body)
         self.last = det
         for name in ("bottle", "glass"):
             d = det.objects[name]
@@ -261,7 +261,7 @@ def fit_library(cal: dict, frames, seed: int = 0) -> tuple[dict, dict]:
     data = {k: ([], [], []) for k in library.KINDS}
     offsets: dict[str, list[np.ndarray]] = {}
     for f, lab in frames:
-        d = det(f.left, f.right, f.cams)
+        d = det(f.left, f.right, f.cams, f.body)
         for name in ("bottle", "glass"):
             o = d.objects[name]
             if o.visible:

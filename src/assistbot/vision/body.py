@@ -1,0 +1,98 @@
+"""The robot's own arm in its camera images: which pixels it may cover.
+
+A real robot knows its joint angles and its own shape; from them (forward kinematics) it knows
+where its arm is in its cameras' images.  Vision uses that to tell the edge of an object from the
+edge of the arm in front of it: an object whose silhouette ends on the arm is cut by it, and its
+lowest visible row is not the base it stands on.
+
+`RobotBody.of(model, data)` takes the arm's visual geoms (links, gripper, fingers) as capsules in
+table coordinates: a cylinder or capsule as its axis and radius, a box as a capsule along its
+longest side whose radius reaches its corners (it covers the box).  `covers(cam, uv)` tells whether
+any of some pixels lies within a capsule's image (with `MARGIN_PX`).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import mujoco
+import numpy as np
+
+from assistbot.vision import segment
+from assistbot.vision.camera import CameraModel
+from assistbot.world import layout
+
+#: the arm's bodies: what can come between the head's cameras and the table top (the base, its
+#: torus and the column stand below and behind the cameras, whose rays to the table pass above them)
+ARM_BODIES = ("robot_link", "robot_gripper", "robot_f")
+MARGIN_PX = 1.5              # px added to each capsule's image radius (pixel rounding of the render)
+VISUAL_GROUP = 2
+
+_GEOMS: dict[int, tuple] = {}
+
+
+def _arm_geoms(model: mujoco.MjModel) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """(geom ids, local axis index per geom, half-lengths, radii) of the arm's visual geoms; per model."""
+    key = id(model)
+    if key not in _GEOMS:
+        rows = []     # (geom, local axis of its long side, half-length, radius)
+        for g in range(model.ngeom):
+            body = model.body(int(model.geom_bodyid[g])).name
+            if model.geom_group[g] != VISUAL_GROUP or not body.startswith(ARM_BODIES):
+                continue
+            t, s = int(model.geom_type[g]), model.geom_size[g]
+            if t in (mujoco.mjtGeom.mjGEOM_CYLINDER, mujoco.mjtGeom.mjGEOM_CAPSULE):
+                rows.append((g, 2, s[1], s[0]))
+            elif t == mujoco.mjtGeom.mjGEOM_BOX:
+                k = int(np.argmax(s[:3]))
+                rows.append((g, k, s[k], float(np.hypot(*np.delete(s[:3], k)))))
+            elif t == mujoco.mjtGeom.mjGEOM_SPHERE:
+                rows.append((g, 2, 0.0, s[0]))
+        ids, axes, half, rad = zip(*rows)
+        _GEOMS[key] = (np.array(ids, int), np.array(axes, int), np.array(half, float), np.array(rad, float))
+    return _GEOMS[key]
+
+
+@dataclass
+class RobotBody:
+    """Capsules in table coordinates: segment ends a, b (N, 3) and radii r (N,)."""
+
+    a: np.ndarray
+    b: np.ndarray
+    r: np.ndarray
+
+    @classmethod
+    def of(cls, model: mujoco.MjModel, data: mujoco.MjData) -> "RobotBody":
+        ids, axes, half, rad = _arm_geoms(model)
+        centre = data.geom_xpos[ids].copy()
+        centre[:, 2] -= layout.TABLE_Z
+        axis = data.geom_xmat[ids].reshape(-1, 3, 3)[np.arange(len(ids)), :, axes]   # the column of the long side
+        return cls(np.ascontiguousarray(centre - half[:, None] * axis), np.ascontiguousarray(centre + half[:, None] * axis), rad)
+
+    def covers(self, cam: CameraModel, uv) -> bool:
+        """Whether any pixel of uv (M, 2) lies on the image of a capsule: its ends projected, the
+        segment between them as wide as the capsule at its nearer end's depth (+ `MARGIN_PX`);
+        capsules (partly) behind the camera are left out.  Compiled when numba is there."""
+        pts = np.ascontiguousarray(np.asarray(uv, float).reshape(-1, 2))
+        P, f = cam.P, float(cam.K[0, 0])
+        if segment._kernels is not None:
+            return bool(segment._kernels.capsules_cover(self.a, self.b, self.r, P, f, MARGIN_PX, pts))
+        a, b = self.a, self.b
+        # the kernel's sums, term by term (not a matrix product, whose order of additions is BLAS's)
+        za = P[2, 0] * a[:, 0] + P[2, 1] * a[:, 1] + P[2, 2] * a[:, 2] + P[2, 3]
+        zb = P[2, 0] * b[:, 0] + P[2, 1] * b[:, 1] + P[2, 2] * b[:, 2] + P[2, 3]
+        ok = (za > 1e-6) & (zb > 1e-6)
+        if not ok.any():
+            return False
+        a, b, r, za, zb = a[ok], b[ok], self.r[ok], za[ok], zb[ok]
+        ua = (P[0, 0] * a[:, 0] + P[0, 1] * a[:, 1] + P[0, 2] * a[:, 2] + P[0, 3]) / za
+        va = (P[1, 0] * a[:, 0] + P[1, 1] * a[:, 1] + P[1, 2] * a[:, 2] + P[1, 3]) / za
+        ub = (P[0, 0] * b[:, 0] + P[0, 1] * b[:, 1] + P[0, 2] * b[:, 2] + P[0, 3]) / zb
+        vb = (P[1, 0] * b[:, 0] + P[1, 1] * b[:, 1] + P[1, 2] * b[:, 2] + P[1, 3]) / zb
+        rad = f * r / np.minimum(za, zb) + MARGIN_PX
+        dx, dy = ub - ua, vb - va
+        L2 = np.maximum(dx * dx + dy * dy, 1e-12)
+        px, py = pts[:, :1] - ua, pts[:, 1:] - va                 # (M, N)
+        t = np.minimum(np.maximum((px * dx + py * dy) / L2, 0.0), 1.0)
+        ex, ey = px - t * dx, py - t * dy
+        return bool((ex * ex + ey * ey < rad * rad).any())
