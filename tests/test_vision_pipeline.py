@@ -75,8 +75,8 @@ def test_object_in_the_robot_gripper_is_held_or_unseen_not_misplaced(world):
 def test_object_behind_the_robot_arm_is_unseen_or_in_place_not_misplaced(seed, name, dz):
     """The robot's gripper put (by IK) on the line from the left camera to the object, in front of
     its middle, base (dz < 0) or top: the object is reported unseen or within 3 cm of where it
-    stands.  (1, bottle, -0.06) hides the base in both cameras at different heights; placing its
-    lowest visible rows on the table put it 6 cm too far before the bottoms' rows were compared.)"""
+    stands.  (1, bottle, -0.06) hides the base in both cameras: before vision knew where its own arm
+    is, the arm's edge under the bottle was placed on the table and the bottle reported 6 cm too far."""
     import mujoco
     from assistbot.world import layout
     from assistbot.world.render import SEGMENT_LABELS
