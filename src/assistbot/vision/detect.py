@@ -356,7 +356,7 @@ class Detector:
     def __init__(self, calibration: dict) -> None:
         self.table = ColourTable(calibration["hsv"])
         self.static_skin = np.array(calibration.get("static_skin", []), float).reshape(-1, 3)
-        self.static_cells = np.array(calibration.get("static_skin_cells", []), float).reshape(-1, 3)
+        self.static_cells = np.ascontiguousarray(np.array(calibration.get("static_skin_cells", []), float).reshape(-1, 3))
         self.arm_root = np.array(calibration["arm_root"], float) if "arm_root" in calibration else None
         self._margin = cv2.getStructuringElement(cv2.MORPH_ELLIPSE, (2 * STATIC_MARGIN + 1,) * 2)
         if segment._kernels is not None:   # compile (or load from numba's cache) the hand's and the arm's kernels now, not in the first frame
@@ -364,6 +364,7 @@ class Detector:
             finger_parts(np.ones((3, 3), bool), 1.0)
             z = np.zeros((1, 3))
             segment._kernels.capsules_cover(z, z, np.zeros(1), np.eye(3, 4), 1.0, 1.0, np.zeros((1, 2)))
+            segment._kernels.project_half(z, np.zeros(3), np.eye(3), np.eye(3))
 
     def __call__(self, left: np.ndarray, right: np.ndarray, cams: tuple[CameraModel, CameraModel],
                  body: RobotBody | None = None) -> Detections:
@@ -385,7 +386,11 @@ class Detector:
         return det
 
     def static_spots(self, cam: CameraModel) -> np.ndarray:
-        """The static skin cells' projections in a half-resolution image of this camera ((N, 2) u, v)."""
+        """The static skin cells' projections in a half-resolution image of this camera ((N, 2) u, v);
+        compiled when numba is there (the same pixels: its sums differ from BLAS's in the last bits,
+        which the stamp's truncation to whole pixels does not see)."""
+        if segment._kernels is not None:
+            return segment._kernels.project_half(self.static_cells, cam.C, cam.R, cam.K)
         return cam.project(self.static_cells) * 0.5
 
     @staticmethod
