@@ -468,6 +468,12 @@ def gradient_histogram(c, cell, bins):
     return hist
 
 
+@numba.njit(cache=True, nogil=True, inline="always")
+def _homog(P, k, X, i):
+    """Row k of the camera matrix P (3, 4) times point X[i] with a 1 appended, summed left to right."""
+    return P[k, 0] * X[i, 0] + P[k, 1] * X[i, 1] + P[k, 2] * X[i, 2] + P[k, 3]
+
+
 @numba.njit(cache=True, nogil=True)
 def capsules_cover(a, b, r, P, f, margin, pts):
     """`body.RobotBody.covers`: whether any pixel of pts (M, 2) lies on the image of a capsule (ends
@@ -475,14 +481,11 @@ def capsules_cover(a, b, r, P, f, margin, pts):
     segment between them widened by f * r over the nearer end's depth plus margin px.  The same
     sums in the same order as the numpy path."""
     for i in range(r.shape[0]):
-        za = P[2, 0] * a[i, 0] + P[2, 1] * a[i, 1] + P[2, 2] * a[i, 2] + P[2, 3]
-        zb = P[2, 0] * b[i, 0] + P[2, 1] * b[i, 1] + P[2, 2] * b[i, 2] + P[2, 3]
+        za, zb = _homog(P, 2, a, i), _homog(P, 2, b, i)
         if not (za > 1e-6 and zb > 1e-6):
             continue                     # (partly) behind the camera
-        ua = (P[0, 0] * a[i, 0] + P[0, 1] * a[i, 1] + P[0, 2] * a[i, 2] + P[0, 3]) / za
-        va = (P[1, 0] * a[i, 0] + P[1, 1] * a[i, 1] + P[1, 2] * a[i, 2] + P[1, 3]) / za
-        ub = (P[0, 0] * b[i, 0] + P[0, 1] * b[i, 1] + P[0, 2] * b[i, 2] + P[0, 3]) / zb
-        vb = (P[1, 0] * b[i, 0] + P[1, 1] * b[i, 1] + P[1, 2] * b[i, 2] + P[1, 3]) / zb
+        ua, va = _homog(P, 0, a, i) / za, _homog(P, 1, a, i) / za
+        ub, vb = _homog(P, 0, b, i) / zb, _homog(P, 1, b, i) / zb
         rad = f * r[i] / min(za, zb) + margin
         dx, dy = ub - ua, vb - va
         L2 = max(dx * dx + dy * dy, 1e-12)

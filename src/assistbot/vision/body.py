@@ -78,17 +78,17 @@ class RobotBody:
         if segment._kernels is not None:
             return bool(segment._kernels.capsules_cover(self.a, self.b, self.r, P, f, MARGIN_PX, pts))
         a, b = self.a, self.b
-        # the kernel's sums, term by term (not a matrix product, whose order of additions is BLAS's)
-        za = P[2, 0] * a[:, 0] + P[2, 1] * a[:, 1] + P[2, 2] * a[:, 2] + P[2, 3]
-        zb = P[2, 0] * b[:, 0] + P[2, 1] * b[:, 1] + P[2, 2] * b[:, 2] + P[2, 3]
+
+        def homog(k, X):   # the kernel's sums, term by term (not a matrix product: BLAS orders its additions)
+            return P[k, 0] * X[:, 0] + P[k, 1] * X[:, 1] + P[k, 2] * X[:, 2] + P[k, 3]
+
+        za, zb = homog(2, a), homog(2, b)
         ok = (za > 1e-6) & (zb > 1e-6)
         if not ok.any():
             return False
         a, b, r, za, zb = a[ok], b[ok], self.r[ok], za[ok], zb[ok]
-        ua = (P[0, 0] * a[:, 0] + P[0, 1] * a[:, 1] + P[0, 2] * a[:, 2] + P[0, 3]) / za
-        va = (P[1, 0] * a[:, 0] + P[1, 1] * a[:, 1] + P[1, 2] * a[:, 2] + P[1, 3]) / za
-        ub = (P[0, 0] * b[:, 0] + P[0, 1] * b[:, 1] + P[0, 2] * b[:, 2] + P[0, 3]) / zb
-        vb = (P[1, 0] * b[:, 0] + P[1, 1] * b[:, 1] + P[1, 2] * b[:, 2] + P[1, 3]) / zb
+        ua, va = homog(0, a) / za, homog(1, a) / za
+        ub, vb = homog(0, b) / zb, homog(1, b) / zb
         rad = f * r / np.minimum(za, zb) + MARGIN_PX
         dx, dy = ub - ua, vb - va
         L2 = np.maximum(dx * dx + dy * dy, 1e-12)
