@@ -2,11 +2,14 @@
 
 from __future__ import annotations
 
+import dataclasses
+
 import numpy as np
 import pytest
 
 from assistbot.cli import main
 from assistbot.errors import UserError
+from assistbot.scenario import load_scenario
 from assistbot.vision import CaptureConfig, StereoCapture, Vision
 from assistbot.vision.camera import CameraModel, triangulate
 from assistbot.vision.evaluate import run as evaluate
@@ -453,3 +456,21 @@ def test_robot_body_covers_the_arms_pixels_in_the_render():
     assert arm.sum() > 500
     assert (arm & on).sum() / arm.sum() > 0.85
     assert (arm & on_low).sum() / on_low.sum() > 0.7
+
+
+def test_a_hand_turning_the_glass_behind_it_is_not_read_as_pointing_at_the_bottle():
+    """Active user, inverted glass on her side: the robot reaches for the bottle while she turns the
+    glass. The glass then hides her hand in both cameras and the forearm's end, at the glass's edge,
+    looks like a pointing finger (that reading made the robot say "You are pointing at the bottle.
+    You want the bottle."). A hand whose end touches the glass is at it, not pointing past it."""
+    from assistbot.episode.runner import Episode
+
+    sc = dataclasses.replace(load_scenario("active-inverted-glass-hws"), time_limit=12.0)
+    ep = Episode(sc, "vision")
+    ep.run()
+    turning = [e for e in ep.log if e["kind"] == "tick" and e["human"] == "turn_glass" and e["t"] > 8.0]
+    assert len(turning) > 30                      # she is still turning it at 12 s
+    read = [e["percept"]["hand"]["posture"] for e in turning if e["percept"]["hand"]["seen"]]
+    assert len(read) > 30 and read.count("pointing") <= 1, read
+    said = [e["tag"] for e in ep.log if e["kind"] == "say"]
+    assert "understood:point_bottle" not in said and "infer:get_bottle" not in said, said

@@ -68,6 +68,8 @@ STATIC_SKIN_R = 0.08       # m: skin this close to a calibrated static spot is n
 STATIC_MARGIN = 2          # half-resolution px (~1-2 cm at the table) around the static cells' projections
 HAND_REACH = 0.10          # m: hand crop half-size
 HOG_CELL, HOG_BINS = 8, 6  # the hand crops' gradient histograms: cells (px) and orientations
+AT_GLASS_PX = 3            # half-resolution px (about 2-3 cm at the hand) around the hand's end ...
+AT_GLASS_MIN = 2           # ... holding at least this many glass pixels in each camera: the hand is at the glass
 _B, _S, _G, _L, _K, _T = (LABEL[p] for p in ("bottle", "stopper", "glass", "liquid", "skin", "shirt"))
 assert _L == _G + 1      # the glass mask is one label range over both labels
 #: the label ranges of the blob masks: bottle, glass or liquid (consecutive labels), skin
@@ -108,6 +110,7 @@ class HandDetection:
     crop: np.ndarray | None = None
     geo: np.ndarray | None = None
     uv: np.ndarray | None = None             # distal end in the left image
+    at_glass: bool = False                   # its end touches the glass's image in both cameras
 
 
 @dataclass
@@ -269,6 +272,13 @@ def _axis_xy(cams, rois) -> np.ndarray | None:
     v = common + 0.5
     X = triangulate(cams[0], cams[1], np.column_stack([ul[il], v]), np.column_stack([ur[ir], v]))
     return _median0(X[:, :2])
+
+
+def _labels_near(lab: np.ndarray, uv, lo: int, hi: int, r: int) -> int:
+    """Pixels labelled lo..hi within r half-resolution px (a square) of full-resolution point uv."""
+    u, v = int(uv[0]) // 2, int(uv[1]) // 2
+    win = lab[max(0, v - r):max(0, v + r + 1), max(0, u - r):max(0, u + r + 1)]
+    return int(np.count_nonzero((win >= lo) & (win <= hi)))
 
 
 class _Roi:
@@ -550,6 +560,7 @@ class Detector:
                 sd = np.sqrt((dev * dev).sum(axis=0) / len(pr))
                 spread = [float(sd[0]), float(sd[1]), float(len(far))]
         Xd, Xr = triangulate(cams[0], cams[1], np.array([ends[0], roots[0]]), np.array([ends[1], roots[1]]))
+        at_glass = all(_labels_near(L, end, _G, _L, AT_GLASS_PX) >= AT_GLASS_MIN for L, end in zip(lab, ends))
         # the hand's skin around its end in each camera: the left one, at the template size, is matched
         # against the prototypes; both give their outline's gradient histogram and their thin parts
         # (two views of the fingers)
@@ -570,7 +581,7 @@ class Detector:
         area = a.area * px ** 2 * 1e4                               # cm^2 of skin in view
         shape = [spread[0] * px * 100, spread[1] * px * 100, spread[2] * px * px * 1e4]   # cm, cm, cm^2
         geo = np.concatenate([self._hand_geo(Xd, Xr, det, area, shape), *hogs, *fingers])
-        return HandDetection(True, Xd, Xr, a, crop, geo, np.asarray(ends[0]))
+        return HandDetection(True, Xd, Xr, a, crop, geo, np.asarray(ends[0]), at_glass)
 
     @staticmethod
     def _hand_geo(Xd: np.ndarray, Xr: np.ndarray, det: Detections, area: float, shape) -> np.ndarray:

@@ -117,6 +117,12 @@ class Classifier:
 
     def classify(self, crop: np.ndarray | None, extra: np.ndarray) -> tuple[str, float, np.ndarray]:
         """(class, confidence in [0, 1], class template scores)."""
+        pr, f = self.probabilities(crop, extra)
+        c = int(pr.argmax())
+        return self.classes[c], float(pr[c]), f[:len(f) - len(extra)]
+
+    def probabilities(self, crop: np.ndarray | None, extra: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """(each class's probability, or share of the neighbours' weighted votes; the feature vector)."""
         f = self.features(crop, extra)
         z = (f - self.mean) / self.std * self.weights
         if self.mlp is not None:   # an ensemble: the members' probabilities averaged
@@ -125,15 +131,12 @@ class Classifier:
             logit = np.einsum("mh,mhc->mc", h, m["W2"]) + m["b2"]
             pr = np.exp(logit - logit.max(axis=1, keepdims=True))
             pr = pr / pr.sum(axis=1, keepdims=True)
-            pr = pr.sum(axis=0) / len(pr)      # .mean(axis=0): the same sum and division
-            c = int(pr.argmax())
-            return self.classes[c], float(pr[c]), f[:len(f) - len(extra)]
+            return pr.sum(axis=0) / len(pr), f      # .mean(axis=0): the same sum and division
         d = np.sum((self.X - z) ** 2, axis=1)
         idx = np.argpartition(d, min(K_NEIGHBOURS, len(d) - 1))[:K_NEIGHBOURS]
         w = 1.0 / (np.sqrt(d[idx]) + 1e-3)
         votes = np.bincount(self.y[idx], weights=w, minlength=len(self.classes))
-        c = int(np.argmax(votes))
-        return self.classes[c], float(votes[c] / votes.sum()), f[:len(f) - len(extra)]
+        return votes / votes.sum(), f
 
 
 def build_classifier(kind: str, crops: list[np.ndarray | None], extras: list[np.ndarray], labels: list[str], seed: int = 0,

@@ -148,6 +148,15 @@ class Vision:
                 return HandPercept(posture="drink", position=pos, object_in_hand="glass", directed_at="glass", confidence=0.6)
             return HandPercept(seen=False, confidence=0.0)
         posture, conf, _ = self.classifiers["hand"].classify(h.crop, h.geo)
+        if posture == "pointing" and h.at_glass:
+            # a pointing finger stays clear of what it points at; a hand whose end touches the glass in
+            # both images is at it, and the glass hides the hand (turning it, say): the forearm's end
+            # then looks like a finger.  The likeliest other posture, with its (low) probability
+            hand = self.classifiers["hand"]
+            pr = hand.probabilities(h.crop, h.geo)[0].copy()
+            pr[hand.classes.index("pointing")] = 0.0
+            c = int(pr.argmax())
+            posture, conf = hand.classes[c], float(pr[c])
         X = h.position + self.hand_offset.get(posture, np.zeros(3))
         seen_objs = {n: np.array(o.position) for n, o in p.objects.items() if o.seen}
         hp = HandPercept(posture=posture, position=tuple(round(float(v), 4) for v in X), confidence=round(conf, 3))
@@ -156,6 +165,11 @@ class Vision:
             hp.directed_at = target
             if posture != "remove_stopper":
                 hp.object_in_hand = target
+        elif h.at_glass and not p.objects["glass"].seen and posture in ("reach", "grasp_ag", "grasp_sg"):
+            # at a glass too tilted or covered to place: that glass, not the nearest object placed
+            hp.directed_at = "glass"
+            if posture != "reach":
+                hp.object_in_hand = "glass"
         elif seen_objs:
             near = min(seen_objs, key=lambda n: _norm(seen_objs[n][:2] - X[:2]))
             if posture in ("grasp_ag", "grasp_sg") and _norm(seen_objs[near][:2] - X[:2]) < IN_HAND_XY + 0.05:
