@@ -4,6 +4,7 @@ import numpy as np
 import pytest
 
 from assistbot.human.controller import HumanController
+from assistbot.human.perception import RobotView
 from assistbot.world import Arrangement, all_arrangements, build_world
 
 
@@ -31,3 +32,36 @@ def test_active_first_step_in_every_arrangement_with_one(arr):
     has_move = arr.bottle.zone == "HWS" and arr.bottle.state == "closed" or arr.glass.zone == "RWS" \
         or (arr.glass.zone == "HWS" and arr.glass.state in ("inverted", "full"))
     assert bool(hc.events("start")) == has_move
+
+
+def _robot(offers: bool):
+    """What the person sees of the robot: the bottle held out toward her, or an idle hand."""
+    return RobotView("bottle", (0.2, 0.0, 0.25), True, False) if offers else RobotView(None, (0.45, 0.0, 0.3), False, True)
+
+
+@pytest.mark.parametrize("offer_until, takes", [(1.5, False), (None, True)])
+def test_what_the_robot_held_out_while_the_hand_was_busy_is_taken_only_if_still_held_out(offer_until, takes):
+    """An active person sees the robot hold the bottle out while her open hand is held out (a
+    request): she will take it once her hand is free -- if the robot still holds it out then. If the
+    robot has taken it back meanwhile, she does not start waiting for it (which would leave the
+    robot's next request unanswered)."""
+    w = build_world(Arrangement.from_options("RWS:open", "RWS:empty"), seed=0)
+    clock = {"t": 0.0}
+    hc = HumanController(w, profile="active", seed=0,
+                         see=lambda world: _robot(0.5 <= clock["t"] and (offer_until is None or clock["t"] < offer_until)))
+    hc.run(12.0, robot=lambda t: clock.update(t=t))
+    starts = [e.what for e in hc.events("start")]
+    assert starts[0] == "request"
+    assert ("take_from_robot" in starts) == takes, starts
+    dropped = [e for e in hc.events("note") if e.what == "dropped"]
+    assert bool(dropped) == (not takes)
+    assert [e.what for e in hc.events("saw")].count("robot_offers:bottle") == 1
+
+
+def test_the_robot_holding_the_bottle_out_again_is_seen_again():
+    w = build_world(Arrangement.from_options("RWS:open", "RWS:empty"), seed=0)
+    clock = {"t": 0.0}
+    hc = HumanController(w, profile="passive", seed=0, see=lambda world: _robot(0.5 <= clock["t"] < 1.5 or clock["t"] >= 3.0))
+    hc.run(6.0, robot=lambda t: clock.update(t=t))
+    saw = [round(e.t, 1) for e in hc.events("saw") if e.what == "robot_offers:bottle"]
+    assert len(saw) == 2 and saw[1] >= 3.0, saw

@@ -8,7 +8,8 @@ each after the profile's reaction delay.
 
 What it does next, in this order: a running behaviour continues; a pending response to the
 robot or follow-up of a finished behaviour (passive and active alike: e.g. a full glass taken
-from the robot is drunk from) starts; otherwise the scenario script's next step whose
+from the robot is drunk from) starts -- one that answers only a sight (the robot holding
+something out) while the sight lasts; otherwise the scenario script's next step whose
 `after:` event has happened; otherwise, for a profile with initiative and no script, the
 default policy (`policy.next_move`).  Every start, success and failure goes to `log`.
 """
@@ -42,6 +43,11 @@ class Event:
     detail: dict
 
 
+def _key(resp: tuple[str, dict]) -> tuple:
+    name, args = resp
+    return name, tuple(sorted(args.items()))
+
+
 class HumanController:
     def __init__(self, world, profile: str | Profile = "active", seed: int = 0, config: HumanConfig | None = None,
                  see: Callable[[object], RobotView] = see_robot, dt: float = 0.02) -> None:
@@ -68,6 +74,7 @@ class HumanController:
         self.view: RobotView = see(world)
         self._seen: set[str] = set()
         self._pending: list[tuple[str, dict]] = []           # responses waiting to start
+        self._answers_sight: dict[tuple, str] = {}           # of those, the ones only a sight asked for: that sight
         self._next_look = 0.0                                # next time the robot is looked at
         self._next_decision = 0.0                            # next time the default policy is consulted
         self._n_clamped = 0
@@ -89,15 +96,16 @@ class HumanController:
         while len(self._views) > 1 and self._views[1][0] <= t - delay + 1e-9:
             self._views.popleft()
         self.view = self._views[0][1]
-        for key, on in (("robot_holds:" + str(self.view.holds), self.view.holds is not None),
-                        ("robot_offers:" + str(self.view.offers), self.view.offers is not None),
-                        ("robot_requests", self.view.requests)):
-            if on and key not in self._seen:
+        now = [key for key, on in (("robot_holds:" + str(self.view.holds), self.view.holds is not None),
+                                   ("robot_offers:" + str(self.view.offers), self.view.offers is not None),
+                                   ("robot_requests", self.view.requests)) if on]
+        for key in now:
+            if key not in self._seen:
                 self._seen.add(key)
                 self.log.append(Event(t, "saw", key, {}))
                 self._on_seen(key)
-            elif not on:
-                self._seen.discard(key)
+        # what is no longer to be seen (the robot has put the bottle it held out back, say): seen anew next time
+        self._seen.intersection_update(now)
         while self._heard and self._heard[0][0] <= t + 1e-9:
             _, tag = self._heard.popleft()
             self.heard_tags.append((t, tag))
@@ -109,6 +117,8 @@ class HumanController:
         for resp in policy.response_to_tag(self, tag):
             if resp not in self._pending:
                 self._pending.append(resp)
+            else:   # asked for in words too: it no longer hangs on the sight
+                self._answers_sight.pop(_key(resp), None)
         if self._pending and self.current is not None and self.current.name not in policy.UNINTERRUPTIBLE:
             # the robot asked for something: stop waiting for what we were doing, answer it
             b = self.current
@@ -123,6 +133,7 @@ class HumanController:
         for resp in policy.response_to_sight(self, key):
             if resp not in self._pending:
                 self._pending.append(resp)
+                self._answers_sight[_key(resp)] = key
 
     # ------------------------------------------------------------------ events for scripts
     def happened(self, event: tuple[str, str | None] | None) -> bool:
@@ -160,6 +171,12 @@ class HumanController:
     def _next(self) -> None:
         while self._pending:
             name, args = self._pending.pop(0)
+            sight = self._answers_sight.pop(_key((name, args)), None)
+            if sight is not None and sight not in self._seen:
+                # e.g. the bottle the robot held out while the hand was busy pulling its stopper: the
+                # robot has put it back since, and waiting for it to come again would ignore the robot
+                self.log.append(Event(self.t, "note", "dropped", {"behaviour": name, "reason": f"no longer sees {sight}", **args}))
+                continue
             if policy.still_relevant(self, name, args):
                 self.start(name, **args)
                 return
