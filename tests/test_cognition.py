@@ -259,6 +259,19 @@ def test_errors_and_hand_over(name, action, tag):
         assert [d.target for d in rep.decisions if d.new] == ["glass"]
 
 
+@pytest.mark.parametrize("glass_zone, first", [("RWS", "Reach-grasp-open-bottle-fill-glass"), ("HWS", "Hand-over-bottle")])
+def test_an_open_hand_while_the_robot_has_glass_and_open_bottle_gets_the_glass_filled(glass_zone, first):
+    """The person holds out an open hand for 3 s; the robot reads "You want the bottle". With the empty
+    glass in the robot's workspace too, it does not hand the bottle over (the person could not pour
+    from it there): it fills the glass, as the seed keeps the glass until filled. With the glass on
+    the person's side, the bottle is what she needs, and she gets it."""
+    rep = replay(_tl([{"t": 0.0, "bottle": {"zone": "RWS", "state": "open"}, "glass": {"zone": glass_zone, "state": "empty"},
+                       "hand": {"posture": "open_palm_request", "held_out": True}},
+                      {"t": 3.0, "hand": {"posture": "none", "held_out": False}}], duration=8.0), record=False)
+    assert "infer:get_bottle" in [s.tag for s in rep.said]
+    assert rep.chosen == [first]
+
+
 def test_proprioception_puts_the_held_object_in_rws():
     cog = Cognition()
     truth = {"bottle": {"zone": "HWS", "state": "closed"}, "glass": {"zone": "RWS", "state": "inverted"},

@@ -302,7 +302,9 @@ ROBOT_ACTIONS: tuple[RobotAction, ...] = (
                 requires={"bottle_zone": ("HWS",)}, effects={"bottle_zone": "RWS"}, response="give_object"),
     RobotAction("Hand-over-bottle", "bottle", "hand_over_bottle",
                 intentions={"Get-bottle": 2.0},
-                objects={"bottle_open_RWS": 0.8, "glass_empty_HWS": 0.6, "bottle_closed_RWS": 0.3},
+                # as the seed's open bottle keeps the glass in RWS until filled: with the empty glass in
+                # RWS the robot fills it rather than hand over a bottle the partner cannot pour from
+                objects={"bottle_open_RWS": 0.8, "glass_empty_HWS": 0.6, "bottle_closed_RWS": 0.3, "glass_empty_RWS": -1.5},
                 present={"Fill-glass": 0.6}, initiative=0.5,
                 requires={"bottle_zone": ("RWS",)}, effects={"bottle_zone": "HWS"}, response="take_object"),
     RobotAction("Receive-object", "held_out", "receive_object",
