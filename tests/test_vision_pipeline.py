@@ -467,7 +467,10 @@ def test_a_hand_turning_the_glass_behind_it_is_not_read_as_pointing_at_the_bottl
 
     sc = dataclasses.replace(load_scenario("active-inverted-glass-hws"), time_limit=12.0)
     ep = Episode(sc, "vision")
-    ep.run()
+    try:
+        ep.run()
+    finally:
+        ep.perception.close()
     turning = [e for e in ep.log if e["kind"] == "tick" and e["human"] == "turn_glass" and e["t"] > 8.0]
     assert len(turning) > 30                      # she is still turning it at 12 s
     read = [e["percept"]["hand"]["posture"] for e in turning if e["percept"]["hand"]["seen"]]
