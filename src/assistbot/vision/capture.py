@@ -117,11 +117,11 @@ class StereoCapture:
             raise RuntimeError("StereoCapture.start needs threaded=True")
         if self._pending is not None:
             raise RuntimeError("StereoCapture.start: collect the frame started before first")
-        frame = StereoFrame(float(data.time), None, None, self.cameras(data), meta=dict(meta or {}),
-                            body=RobotBody.of(self.model, data))
+        frame = StereoFrame(float(data.time), None, None, self.cameras(data), meta=dict(meta or {}))
         if self._dropped():
             frame.dropped = True
             return frame
+        frame.body = RobotBody.of(self.model, data)   # only a frame that will be processed needs it
         self._thread.submit([self.renderer.update_scene(data, cam, s) for cam, s in zip(CAMERAS, self._scenes)])
         self._pending = frame
         return frame
