@@ -147,16 +147,16 @@ class Vision:
                 pos = tuple(round(float(v), 4) for v in glass.position + np.array([0, 0, 0.05]))
                 return HandPercept(posture="drink", position=pos, object_in_hand="glass", directed_at="glass", confidence=0.6)
             return HandPercept(seen=False, confidence=0.0)
-        posture, conf, _ = self.classifiers["hand"].classify(h.crop, h.geo)
-        if posture == "pointing" and h.at_glass:
+        hand = self.classifiers["hand"]
+        pr = hand.probabilities(h.crop, h.geo)[0]
+        c = int(pr.argmax())
+        if hand.classes[c] == "pointing" and h.at_glass:
             # a pointing finger stays clear of what it points at; a hand whose end touches the glass in
             # both images is at it, and the glass hides the hand (turning it, say): the forearm's end
             # then looks like a finger.  The likeliest other posture, with its (low) probability
-            hand = self.classifiers["hand"]
-            pr = hand.probabilities(h.crop, h.geo)[0].copy()
-            pr[hand.classes.index("pointing")] = 0.0
+            pr[c] = 0.0
             c = int(pr.argmax())
-            posture, conf = hand.classes[c], float(pr[c])
+        posture, conf = hand.classes[c], float(pr[c])
         X = h.position + self.hand_offset.get(posture, np.zeros(3))
         seen_objs = {n: np.array(o.position) for n, o in p.objects.items() if o.seen}
         hp = HandPercept(posture=posture, position=tuple(round(float(v), 4) for v in X), confidence=round(conf, 3))
