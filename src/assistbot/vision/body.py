@@ -13,6 +13,7 @@ any of some pixels lies within a capsule's image (with `MARGIN_PX`).
 
 from __future__ import annotations
 
+import weakref
 from dataclasses import dataclass
 
 import mujoco
@@ -28,13 +29,13 @@ ARM_BODIES = ("robot_link", "robot_gripper", "robot_f")
 MARGIN_PX = 1.5              # px added to each capsule's image radius (pixel rounding of the render)
 VISUAL_GROUP = 2
 
-_GEOMS: dict[int, tuple] = {}
+_GEOMS: "weakref.WeakKeyDictionary[mujoco.MjModel, tuple]" = weakref.WeakKeyDictionary()
 
 
 def _arm_geoms(model: mujoco.MjModel) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
     """(geom ids, local axis index per geom, half-lengths, radii) of the arm's visual geoms; per model."""
-    key = id(model)
-    if key not in _GEOMS:
+    got = _GEOMS.get(model)
+    if got is None:
         rows = []     # (geom, local axis of its long side, half-length, radius)
         for g in range(model.ngeom):
             body = model.body(int(model.geom_bodyid[g])).name
@@ -49,8 +50,8 @@ def _arm_geoms(model: mujoco.MjModel) -> tuple[np.ndarray, np.ndarray, np.ndarra
             elif t == mujoco.mjtGeom.mjGEOM_SPHERE:
                 rows.append((g, 2, 0.0, s[0]))
         ids, axes, half, rad = zip(*rows)
-        _GEOMS[key] = (np.array(ids, int), np.array(axes, int), np.array(half, float), np.array(rad, float))
-    return _GEOMS[key]
+        got = _GEOMS[model] = (np.array(ids, int), np.array(axes, int), np.array(half, float), np.array(rad, float))
+    return got
 
 
 @dataclass
