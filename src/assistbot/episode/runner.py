@@ -23,6 +23,8 @@ import numpy as np
 from assistbot.cognition import Cognition
 from assistbot.errors import UserError
 from assistbot.episode.executor import RobotExecutor
+from assistbot.episode.judge import Judge
+from assistbot.episode.touch import TouchMonitor
 from assistbot.human.controller import HumanController
 from assistbot.human.script import HumanConfig, PARAMS as HUMAN_PARAMS
 from assistbot.scenario import VISION_PARAMS, Scenario, check_vision_value
@@ -55,11 +57,14 @@ class EpisodeResult:
     errors_communicated: int
     wall: dict[str, float]
     overrides: dict[str, Any] = field(default_factory=dict)
+    touched_person: dict = field(default_factory=dict)
+    end_detail: dict = field(default_factory=dict)
 
     def summary(self) -> dict:
         return {
             "scenario": self.scenario, "seed": self.seed, "perception": self.perception,
-            "success": self.success, "end_reason": self.end_reason, "time": round(self.time, 3),
+            "success": self.success, "end_reason": self.end_reason, "end_detail": self.end_detail,
+            "time": round(self.time, 3),
             "time_to_drink": None if self.time_to_drink is None else round(self.time_to_drink, 3),
             "decisions": [a for _, a in self.decisions],
             "decision_times": [round(t, 3) for t, _ in self.decisions],
@@ -67,6 +72,7 @@ class EpisodeResult:
             "human_events": self.human_events,
             "spilled_fraction": round(self.spilled_fraction, 4),
             "min_distance_human": round(self.min_distance_human, 4),
+            "touched_person": self.touched_person,
             "errors_communicated": self.errors_communicated,
             "wall_seconds": {k: round(v, 3) for k, v in self.wall.items()},
             "overrides": self.overrides,
@@ -136,6 +142,8 @@ class Episode:
         self._prev = None
         self.min_distance = math.inf
         self._distance_pairs = self._robot_human_pairs()
+        self.judge = Judge(self.world, scenario.time_limit)
+        self.touch = TouchMonitor(self.world.model, self.world.data)
         self.last_percept = None
         self.last_decision = None
 
@@ -197,7 +205,6 @@ class Episode:
         w, wall = self.world, self.wall
         limit = self.scenario.time_limit
         tick = 0
-        end_reason = "time limit"
         t_drink = None
         next_frame = 0.0
         n_human_events = 0
@@ -210,6 +217,8 @@ class Episode:
                 self.robot.see(percept)
                 decision = self.cognition.update(percept)
                 if self.robot.status in ("finished", "failed"):
+                    rec = self.robot.records[-1]
+                    self.judge.action_ended(t, rec.action, rec.status, rec.reason)
                     self.robot.acknowledge()
                 rendered = getattr(self.perception, "render_seconds", 0.0)
                 wall["rendering"] += rendered
@@ -234,6 +243,7 @@ class Episode:
             if decision.new and decision.action:
                 said = [u.text for u in decision.utterances if u.layer == "AEL"]
                 self.robot.begin(decision.action, t, said[0] if said else "")
+                self.judge.decided(t, decision.action)
                 self.log.append({"t": round(t, 3), "kind": "decide", "action": decision.action, "target": decision.target})
             c0 = time.perf_counter()
             self.robot.tick(t, CONTROL_DT)
@@ -260,17 +270,16 @@ class Episode:
             tick += 1
             if progress is not None:
                 progress(w.time)
-            if self._drunk_enough():
+            self.touch.update(w.time, CONTROL_DT)
+            drank = self._drunk_enough()
+            if drank:
                 t_drink = w.time
                 self._event(t_drink, "drink", drunk=int(w.drunk.sum()))
-                end_reason = "drink"
+            if self.judge.verdict(w.time, drank) is not None:
                 break
-            if not np.isfinite(w.data.qpos).all():
-                end_reason = "unrecoverable: the simulation diverged (NaN)"
-                break
-            if w.time >= limit:
-                break
-        return self._result(end_reason, t_drink)
+        if self.judge.reason != "drink":
+            self._event(w.time, "end", reason=self.judge.end_reason(), **self.judge.detail)
+        return self._result(self.judge.end_reason(), t_drink)
 
     def _drunk_enough(self) -> bool:
         if self._drink_base is None or self._drink_base <= 0:
@@ -310,4 +319,6 @@ class Episode:
             errors_communicated=errors,
             wall=dict(self.wall),
             overrides=self.overrides,
+            touched_person=self.touch.worst.to_dict(),
+            end_detail=dict(self.judge.detail),
         )

@@ -7,10 +7,14 @@ when the folder is opened again. Parquet is a typed copy for analysis,
 rewritten from the CSV every so often, at the end and on interrupt.
 
 Columns: ``job_id, scenario, <one per swept path>, seed, perception,
-time_limit, success, time_to_drink, end_reason, decisions, n_decisions,
-errors_communicated, spilled_fraction, min_distance_human, sim_time,
-wall_seconds, cpu_seconds, scenario_sha``. ``decisions`` is the AEL decision sequence
-joined by `` > ``; ``end_reason`` says why an episode ended without a drink.
+time_limit, success, time_to_drink, end_reason, end_detail, decisions, n_decisions,
+n_failed_actions, errors_communicated, spilled_fraction, min_distance_human,
+touched_person, touch_depth, touch_force, sim_time, wall_seconds, cpu_seconds,
+scenario_sha``. ``decisions`` is the AEL decision sequence joined by `` > ``;
+``end_reason`` is one of `assistbot.episode.judge.END_REASONS` (``object fell: bottle``
+names the object) and ``end_detail`` what it concerns (the repeated action, say);
+``touched_person`` whether any robot geom overlapped any of the person's, ``touch_depth``
+the deepest overlap (m) and ``touch_force`` the largest contact force between them (N).
 """
 
 from __future__ import annotations
@@ -27,16 +31,17 @@ from typing import Any, Iterable
 from assistbot.errors import UserError
 
 HEAD = ["job_id", "scenario"]
-TAIL = ["seed", "perception", "time_limit", "success", "time_to_drink", "end_reason", "decisions", "n_decisions",
-        "errors_communicated", "spilled_fraction", "min_distance_human", "sim_time", "wall_seconds", "cpu_seconds",
-        "scenario_sha"]
+TAIL = ["seed", "perception", "time_limit", "success", "time_to_drink", "end_reason", "end_detail", "decisions",
+        "n_decisions", "n_failed_actions", "errors_communicated", "spilled_fraction", "min_distance_human",
+        "touched_person", "touch_depth", "touch_force", "sim_time", "wall_seconds", "cpu_seconds", "scenario_sha"]
 FIXED = HEAD + TAIL
 #: columns that depend on the machine, not on the episode
 VOLATILE = ("wall_seconds", "cpu_seconds")
 ERROR_COLUMNS = ["job_id", "scenario", "params", "seed", "error", "traceback", "wall_seconds", "when"]
 _TYPES = {"seed": "int64", "time_limit": "float64", "success": "bool_", "time_to_drink": "float64",
-          "n_decisions": "int64", "errors_communicated": "int64", "spilled_fraction": "float64",
-          "min_distance_human": "float64", "sim_time": "float64", "wall_seconds": "float64",
+          "n_decisions": "int64", "n_failed_actions": "int64", "errors_communicated": "int64",
+          "spilled_fraction": "float64", "min_distance_human": "float64", "touched_person": "bool_",
+          "touch_depth": "float64", "touch_force": "float64", "sim_time": "float64", "wall_seconds": "float64",
           "cpu_seconds": "float64"}
 
 
@@ -181,7 +186,8 @@ def write_parquet(csv_path: Path, parquet_path: Path) -> None:
 
     header, _ = read_rows(csv_path)
     types = {c: getattr(pa, t)() for c, t in _TYPES.items() if c in header}
-    types.update({c: pa.string() for c in ("job_id", "scenario", "perception", "end_reason", "decisions", "scenario_sha")
+    types.update({c: pa.string() for c in ("job_id", "scenario", "perception", "end_reason", "end_detail", "decisions",
+                                                "scenario_sha")
                   if c in header})
     raw = csv_path.read_bytes()
     if not raw.endswith(b"\n"):

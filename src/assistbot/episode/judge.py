@@ -1,0 +1,118 @@
+"""When an episode ends and why: the failure kinds every summary names.
+
+The judge watches the episode from outside, as an experimenter would (ground truth: the world's
+state, the decisions and the robot's action records); nothing it knows reaches the robot or the
+person. `end_reason` is one of END_REASONS, "object fell" naming the object:
+
+  drink        the person drank from a full glass (the episode's goal)
+  stalled      no decision and no robot motion for STALL_SECONDS
+  repeating    the same action failed REPEAT_FAILURES times, or was decided REPEAT_DECISIONS times
+               in a row (an action that cannot fail, such as Wait, repeated without end)
+  object fell  the bottle or the glass lies on its side, or fell off the table, and stays there
+  diverged     the physics produced NaN or an unstable acceleration
+  time limit   the scenario's time ran out
+"""
+
+from __future__ import annotations
+
+import math
+from collections import Counter
+
+import mujoco
+import numpy as np
+
+from assistbot.world import layout
+
+END_REASONS = ("drink", "stalled", "repeating", "object fell", "diverged", "time limit")
+STALL_SECONDS = 30.0
+REPEAT_FAILURES = 3
+REPEAT_DECISIONS = 5
+#: an object whose axis is farther than this from vertical (up, or down for the glass) lies on its side
+FALLEN_TILT = math.radians(60)
+#: it must stay so, untouched by either partner, this long (s): a tipping object may right itself
+FALLEN_SECONDS = 1.0
+#: robot joint speed (rad/s) above which the robot counts as moving
+MOVING_SPEED = 0.05
+#: the objects whose fall ends the task (the stopper, once off, is set aside and not needed)
+TASK_OBJECTS = ("bottle", "glass")
+
+
+class Judge:
+    """Feed it the episode's events (`decided`, `action_ended`) and call `verdict(t)` every control tick."""
+
+    def __init__(self, world, time_limit: float) -> None:
+        self.world = world
+        self.time_limit = float(time_limit)
+        m = world.model
+        # the arm and the fingers: the head follows what it looks at, which is not progress
+        joints = [j for j in range(m.njnt) if m.joint(j).name.startswith("robot_") and "head" not in m.joint(j).name]
+        self._robot_dofs = np.array([m.jnt_dofadr[j] for j in joints])
+        self._last_activity = 0.0
+        self._failures: Counter[str] = Counter()
+        self._run: list[str] = []           # the decisions since the last different one
+        self._lying_since: dict[str, float] = {}
+        self.reason: str | None = None
+        self.detail: dict = {}
+
+    # -- events ------------------------------------------------------------------------------
+    def decided(self, t: float, action: str) -> None:
+        self._last_activity = t
+        self._run = (self._run if self._run and self._run[-1] == action else []) + [action]
+        if len(self._run) >= REPEAT_DECISIONS:
+            self._end("repeating", action=action, decided_in_a_row=len(self._run))
+
+    def action_ended(self, t: float, action: str, status: str, reason: str = "") -> None:
+        self._last_activity = t
+        if status == "failed":
+            self._failures[action] += 1
+            if self._failures[action] >= REPEAT_FAILURES:
+                self._end("repeating", action=action, failures=self._failures[action], last_reason=reason)
+
+    def _end(self, reason: str, **detail) -> None:
+        if self.reason is None:
+            self.reason, self.detail = reason, detail
+
+    # -- the world -----------------------------------------------------------------------------
+    def fallen(self) -> list[str]:
+        """The task objects lying on their side or below the table top, held by no one."""
+        w, d = self.world, self.world.data
+        held = {w.human_holding(), w.robot_holding()}
+        out = []
+        for name in TASK_OBJECTS:
+            b = w.body_id[name]
+            if name in held:
+                continue
+            axis_z = float(d.xmat[b][8])
+            upright = axis_z > math.cos(FALLEN_TILT) or (name == "glass" and axis_z < -math.cos(FALLEN_TILT))
+            off_table = float(d.xpos[b][2]) < layout.TABLE_Z - 0.05
+            if not upright or off_table:
+                out.append(name)
+        return out
+
+    def verdict(self, t: float, drank: bool = False) -> str | None:
+        """The end reason if the episode ends now, else None."""
+        d = self.world.data
+        if drank:
+            self._end("drink")
+        if self.reason is None and (not np.isfinite(d.qpos).all() or d.warning[mujoco.mjtWarning.mjWARN_BADQACC].number):
+            self._end("diverged")
+        if self.reason is None:
+            lying = set(self.fallen())
+            self._lying_since = {o: self._lying_since.get(o, t) for o in lying}
+            for o, t0 in self._lying_since.items():
+                if t - t0 >= FALLEN_SECONDS:
+                    self._end("object fell", object=o)
+        if self.reason is None:
+            if np.abs(d.qvel[self._robot_dofs]).max() > MOVING_SPEED:
+                self._last_activity = t
+            if t - self._last_activity >= STALL_SECONDS:
+                self._end("stalled", since=round(self._last_activity, 3))
+        if self.reason is None and t >= self.time_limit:
+            self._end("time limit")
+        return self.reason
+
+    def end_reason(self) -> str:
+        """The end reason as summaries print it: 'object fell: bottle' names the object."""
+        if self.reason == "object fell":
+            return f"object fell: {self.detail['object']}"
+        return self.reason or "time limit"
