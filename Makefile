@@ -7,7 +7,7 @@ BIN    := $(VENV)/bin
 STAMP  := $(VENV)/.installed
 DEBS   := libosmesa6 libegl1 libegl-mesa0 libgl1-mesa-dri espeak-ng
 
-.PHONY: demo test test-all bench setup debs clean
+.PHONY: demo test test-all bench matrix setup debs clean
 
 setup: $(STAMP)
 
@@ -38,6 +38,13 @@ test: $(STAMP)
 
 test-all: $(STAMP)
 	$(BIN)/python -m pytest -q
+
+# The task space as a benchmark: 24 arrangements x 3 profiles x 3 seeds with vision (216 episodes,
+# two workers; about an hour on 2 cores), then its report. Resumes where it stopped.
+WORKERS ?= 2
+matrix: $(STAMP)
+	$(BIN)/assistbot sweep scenarios/sweeps/matrix.yaml --workers $(WORKERS) --out render/sweeps/matrix
+	$(BIN)/assistbot report render/sweeps/matrix
 
 bench: $(STAMP)
 	@for b in benchmarks/*.py; do echo "== $$b"; $(BIN)/python $$b || exit 1; done

@@ -119,3 +119,45 @@ def test_report_counts_the_expected_decision_sequence(spec, tmp_path):
     assert "| 0.8 | 6 | 0 | 0.00 |" in md.split("## Expected decision sequence")[1]
     md = write_report(out, expect="A > ...")[0].read_text()  # a prefix
     assert "| 0.8 | 6 | 6 | 1.00 |" in md.split("## Expected decision sequence")[1]
+
+
+class MatrixExecutor(FakeExecutor):
+    """Rows of a task-space sweep: the passive partner never drinks with the glass on their side (stalled);
+    one active episode touches the person 2 cm deep."""
+
+    def run(self, jobs):
+        for job in jobs:
+            self.ran.append(job.id)
+            p = job.params
+            fail = p["human.profile"] == "passive" and p["objects.glass.zone"] == "HWS"
+            deep = p["human.profile"] == "active" and p["objects.glass.zone"] == "RWS" and job.seed == 0
+            yield {"job_id": job.id, "scenario": job.scenario, **p, "seed": job.seed, "perception": job.perception,
+                   "time_limit": job.time_limit, "status": "ok", "success": not fail, "time_to_drink": None if fail else 50.0,
+                   "end_reason": "stalled" if fail else "drink", "end_detail": "", "decisions": "A", "n_decisions": 1,
+                   "n_failed_actions": 0, "errors_communicated": 0, "spilled_fraction": 0.0, "min_distance_human": 0.2,
+                   "touched_person": deep, "touch_depth": 0.02 if deep else 0.0, "touch_force": 0.0, "sim_time": 50.0,
+                   "wall_seconds": 1.0, "cpu_seconds": 1.0, "scenario_sha": job.scenario_sha}
+
+
+def test_the_task_space_report_gives_arrangements_profiles_and_failure_kinds(tmp_path):
+    from assistbot.sweep import write_report
+
+    p = tmp_path / "tiny.yaml"
+    p.write_text(TINY)
+    spec = SweepSpec(scenarios=[str(p)], seeds=2, perception="oracle",
+                     params=[Param.parse("objects.glass.zone", "HWS,RWS"), Param.parse("objects.glass.state", "empty"),
+                             Param.parse("objects.bottle.zone", "RWS"), Param.parse("objects.bottle.state", "open"),
+                             Param.parse("human.profile", "active,passive")])
+    jobs = build_jobs(spec)
+    assert {j.scenario_data["human"]["profile"] for j in jobs} == {"active", "passive"}
+    assert all("human.profile" not in j.overrides for j in jobs)
+    out = tmp_path / "out"
+    run_sweep(spec, out, executor=MatrixExecutor(), progress=False, log=lambda m: None)
+    md = write_report(out)[0].read_text()
+    assert "## Per arrangement" in md and "| bottle RWS open, glass HWS empty | 4 | 2 | 0.50 |" in md
+    assert "| bottle RWS open, glass HWS empty | 2/2 | **0/2** |" in md   # active, passive
+    assert "pairs where fewer than two thirds drank: 1 of 4" in md
+    assert "| stalled | 2 | 0.25 |" in md
+    assert "| overlap with the person > 1 cm | 1 | 2.0 cm |" in md
+    with pytest.raises(UserError, match="unknown profile"):
+        Param.parse("human.profile", "lazy")

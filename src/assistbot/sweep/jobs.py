@@ -94,7 +94,7 @@ def apply_object_params(scenario, values: dict[str, Any], where: str) -> dict[st
 def build_jobs(spec: SweepSpec) -> list[Job]:
     """Every episode of the sweep, seeds outermost (each full pass over the grid is one seed)."""
     from assistbot.scenario import load_scenario
-    from assistbot.sweep.spec import check_value
+    from assistbot.sweep.spec import check_value, is_scenario_path
 
     jobs: list[Job] = []
     paths = [p.path for p in spec.params]
@@ -118,8 +118,10 @@ def build_jobs(spec: SweepSpec) -> list[Job]:
             objects = apply_object_params(scenario, values, spec.source)
             if objects is not None:
                 data["objects"] = objects
+            if "human.profile" in values:
+                data["human"] = {**(data.get("human") or {}), "profile": check_value("human.profile", values["human.profile"], spec.source)}
             data["time_limit"] = tl
-            overrides = {k: check_value(k, v, spec.source) for k, v in values.items() if not k.startswith("objects.")}
+            overrides = {k: check_value(k, v, spec.source) for k, v in values.items() if not is_scenario_path(k)}
             points.append((values, data, overrides))
         for seed in spec.seeds_for(scenario.seed):
             for values, data, overrides in points:

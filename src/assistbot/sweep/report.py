@@ -23,7 +23,7 @@ from assistbot.errors import UserError
 from assistbot.sweep.results import param_columns, parse_value, read_rows
 from assistbot.sweep.stats import Cell
 
-TEXT_COLUMNS = ("job_id", "scenario", "perception", "end_reason", "decisions", "scenario_sha")
+TEXT_COLUMNS = ("job_id", "scenario", "perception", "end_reason", "end_detail", "decisions", "scenario_sha")
 MAX_HEATMAPS = 6
 
 
@@ -215,6 +215,87 @@ def _expect_section(rows: list[dict], factors: list[str], expect: str) -> list[s
     return md
 
 
+#: the swept paths that together name an arrangement (the task space's first axis)
+ARRANGEMENT_PATHS = ("objects.bottle.zone", "objects.bottle.state", "objects.glass.zone", "objects.glass.state")
+#: an overlap with the person deeper than this (m), or a spilled fraction at least this, is a failure
+#: of the episode even when the person drank
+TOUCH_LIMIT = 0.01
+SPILL_LIMIT = 0.10
+
+
+def arrangement_of(row: dict) -> str:
+    """'bottle HWS closed, glass RWS inverted' from a row's swept object paths (missing ones as '?')."""
+    v = [str(row.get(p, "?")) for p in ARRANGEMENT_PATHS]
+    return f"bottle {v[0]} {v[1]}, glass {v[2]} {v[3]}"
+
+
+def end_kind(row: dict) -> str:
+    """The end reason without its detail ('object fell: bottle' -> 'object fell')."""
+    return str(row.get("end_reason") or "?").split(":", 1)[0]
+
+
+def _task_space_section(rows: list[dict], params: list[str]) -> tuple[list[str], list[list[Any]]]:
+    """Per arrangement, and per arrangement x profile (drank / episodes): where the task space fails."""
+    if not any(p in params for p in ARRANGEMENT_PATHS):
+        return [], []
+    for r in rows:
+        r["arrangement"] = arrangement_of(r)
+    cells = table_rows(rows, "arrangement")
+    md = ["## Per arrangement", "", "All profiles and seeds pooled.", ""] + _markdown_table("arrangement", cells) + [""]
+    summary = [["arrangement", _fmt_value(v), c.n, c.successes, c.rate, c.rate_low, c.rate_high, c.ttd_mean, c.ttd_low,
+                c.ttd_high, c.decisions_mean, c.errors_mean, c.spilled_mean, c.min_distance] for v, c in cells]
+    if "human.profile" in params:
+        profiles = _ordered([r.get("human.profile") for r in rows])
+        groups: dict[tuple, list[dict]] = defaultdict(list)
+        for r in rows:
+            groups[(r["arrangement"], r.get("human.profile"))].append(r)
+        md += ["## Arrangement x profile", "",
+               "Episodes that drank of those run (seeds pooled); **bold**: fewer than two thirds drank.", "",
+               "| arrangement | " + " | ".join(str(p) for p in profiles) + " |", "|---|" + "---:|" * len(profiles)]
+        weak = 0
+        for a, _ in cells:
+            out = []
+            for pr in profiles:
+                grp = groups.get((a, pr), [])
+                k = sum(1 for r in grp if r.get("success") is True)
+                text = f"{k}/{len(grp)}" if grp else "–"
+                if grp and 3 * k < 2 * len(grp):
+                    text, weak = f"**{text}**", weak + 1
+                out.append(text)
+            md.append(f"| {a} | " + " | ".join(out) + " |")
+        md += ["", f"Arrangement-profile pairs where fewer than two thirds drank: {weak} of {len(cells) * len(profiles)}.", ""]
+    return md, summary
+
+
+def _failure_section(rows: list[dict]) -> list[str]:
+    """How episodes ended, by kind, and the limits a drinking episode must also keep."""
+    from assistbot.sweep.stats import wilson
+
+    kinds = Counter(end_kind(r) for r in rows)
+    md = ["## Failure kinds", "", "| end reason | episodes | share | 95% CI (Wilson) |", "|---|---:|---:|---|"]
+    for kind, n in kinds.most_common():
+        lo, hi = wilson(n, len(rows))
+        md.append(f"| {kind} | {n} | {_f(n / len(rows))} | {_ci(lo, hi)} |")
+    detail = Counter(f"{r.get('end_reason')}: {r.get('end_detail')}" for r in rows
+                     if end_kind(r) not in ("drink", "time limit") and r.get("end_detail"))
+    if detail:
+        md += ["", "| what ended them | episodes |", "|---|---:|"]
+        md += [f"| {text} | {n} |" for text, n in detail.most_common(10)]
+    depth = [float(r["touch_depth"]) for r in rows if isinstance(r.get("touch_depth"), (int, float))]
+    force = [float(r["touch_force"]) for r in rows if isinstance(r.get("touch_force"), (int, float))]
+    spill = [float(r["spilled_fraction"]) for r in rows if isinstance(r.get("spilled_fraction"), (int, float))]
+    md += ["", "| limit | episodes over it | worst |", "|---|---:|---:|"]
+    if depth:
+        md.append(f"| overlap with the person > {100 * TOUCH_LIMIT:.0f} cm | {sum(d > TOUCH_LIMIT for d in depth)} | "
+                  f"{100 * max(depth):.1f} cm |")
+        md.append(f"| any overlap with the person | {sum(d > 0 for d in depth)} | "
+                  f"{max(force) if force else 0:.1f} N (largest contact force) |")
+    if spill:
+        md.append(f"| spilled >= {100 * SPILL_LIMIT:.0f} % | {sum(x >= SPILL_LIMIT for x in spill)} | {100 * max(spill):.1f} % |")
+    md.append("")
+    return md
+
+
 def write_report(results_dir: str | Path, out: str | Path | None = None, expect: str | None = None) -> list[Path]:
     """Write report.md, summary.csv and the plots; return the written paths (report.md first).
 
@@ -253,6 +334,9 @@ def write_report(results_dir: str | Path, out: str | Path | None = None, expect:
             _plot_param(rows, factor, scenarios, png)
             written.append(png)
             md += [f"![success vs {factor}]({png.name})", ""]
+    space_md, space_summary = _task_space_section(rows, params)
+    md += space_md
+    summary += space_summary
     pairs = list(itertools.combinations(varied, 2))[:MAX_HEATMAPS]
     if pairs:
         md += ["## Heatmaps", ""]
@@ -270,10 +354,7 @@ def write_report(results_dir: str | Path, out: str | Path | None = None, expect:
     for seq, n in seqs.most_common(10):
         drank = sum(1 for r in rows if (r.get("decisions") or "(none)") == seq and r.get("success") is True)
         md.append(f"| {seq} | {n} | {drank} |")
-    md += ["", "## End reasons", "", "| end reason | episodes |", "|---|---:|"]
-    for reason, n in Counter(r.get("end_reason") or "?" for r in rows).most_common():
-        md.append(f"| {reason} | {n} |")
-    md.append("")
+    md += [""] + _failure_section(rows)
     report = out_dir / "report.md"
     report.write_text("\n".join(md), encoding="utf-8")
     summary_path = out_dir / "summary.csv"

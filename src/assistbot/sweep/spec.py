@@ -43,6 +43,8 @@ from assistbot.scenario import VISION_PARAMS, check_vision_value
 
 OBJECT_PATHS = tuple(f"objects.{o}.{k}" for o in ("bottle", "glass")
                      for k in ("position", "position.x", "position.y", "zone", "state"))
+#: paths that change the scenario itself rather than override a parameter: the partner's profile
+SCENARIO_PATHS = ("human.profile",)
 FILE_KEYS = ("scenario", "scenarios", "params", "seeds", "perception", "time_limit", "sample_seed", "out")
 PERCEPTIONS = ("vision", "oracle")
 _RANDOM = re.compile(r"^\s*([a-z_]+)\s*\((.*)\)\s*[x×*]\s*(\d+)\s*$", re.IGNORECASE)
@@ -55,7 +57,7 @@ def valid_paths() -> list[str]:
     from assistbot.human.script import PARAMS as HUMAN_PARAMS
 
     return (["cognition." + p for p in CognitionConfig().paths()] + [f"human.{p}" for p in HUMAN_PARAMS]
-            + list(VISION_PARAMS) + list(OBJECT_PATHS))
+            + list(VISION_PARAMS) + list(OBJECT_PATHS) + list(SCENARIO_PATHS))
 
 
 def check_path(path: str, where: str) -> None:
@@ -214,6 +216,12 @@ def check_value(path: str, value: Any, where: str) -> Any:
         except UserError as exc:
             raise UserError(where, path, exc.message) from None
         return value
+    if path == "human.profile":
+        from assistbot.human.profiles import PROFILES
+
+        if value not in PROFILES:
+            raise UserError(where, path, f"unknown profile {value!r}; use one of {', '.join(PROFILES)}")
+        return value
     if path.startswith("human."):
         from assistbot.human.script import parse_human
 
@@ -225,6 +233,11 @@ def check_value(path: str, value: Any, where: str) -> Any:
     if path in VISION_PARAMS:
         return check_vision_value(path, value, where)
     return value  # objects.*: checked against each scenario when the jobs are built
+
+
+def is_scenario_path(path: str) -> bool:
+    """A swept path that edits the scenario's mapping (objects, the partner's profile), not an override."""
+    return path.startswith("objects.") or path in SCENARIO_PATHS
 
 
 @dataclass(frozen=True)
