@@ -360,3 +360,22 @@ def test_drink_does_not_count_with_a_glass_that_is_not_full():
     ends = _run_until_done(hc, s, 25.0)
     assert ends[-1].what == "drink" and ends[-1].kind == "failure" and "not full" in ends[-1].detail["reason"]
     assert w.state().liquid.drunk > 0                         # the particles did reach the mouth: not counted as a drink
+
+
+# ---------------------------------------------------------------------------- the grip gives way
+@pytest.mark.parametrize("pull, yields", [(8.0, False), (35.0, True)])
+def test_the_persons_grip_holds_a_light_pull_and_gives_way_to_a_strong_one(pull, yields):
+    """A tug of war cannot last: a pull on what the person holds beyond HUMAN_GRIP_YIELD_FORCE frees it."""
+    from assistbot.world.world import HUMAN_GRIP_YIELD_FORCE
+
+    assert 8.0 < HUMAN_GRIP_YIELD_FORCE < 35.0
+    w, s, hc = _setup(_arr({"zone": "RWS", "state": "closed"}, {"zone": "HWS", "state": "empty"}))
+    hc.start("grasp", object="glass", grip="sg", lift=True)
+    _ok(_run_until_done(hc, s, 12.0, "grasp"), "grasp")
+    assert w.human_holding() == "glass"
+    g = w.body_id["glass"]
+    w.data.xfrc_applied[g, 0] = pull           # toward the robot, as a hand taking it would pull
+    hc.run(1.0, robot=s.tick)
+    w.data.xfrc_applied[g, 0] = 0.0
+    assert (w.human_holding() is None) == yields
+    assert bool(w.grip_yields) == yields and (not yields or w.grip_yields[0][1] == "glass")

@@ -12,6 +12,7 @@ import numpy as np
 from assistbot.cognition.oracle import ORACLE_LABEL, oracle_percept
 from assistbot.cognition.percept import Percept
 from assistbot.world import TABLE_Z
+from assistbot.world.state import standing_end
 
 # A hand this close to the middle line (x = 0) with an object or an open palm is "held out".
 HELD_OUT_X = -0.16
@@ -63,10 +64,11 @@ class OraclePerception:
         truth: dict = {"robot": robot, "hand": _hand_truth(self.world, self.human)}
         for name in ("bottle", "glass"):
             o = s.objects[name]
+            pos = standing_end(self.world, name)   # as vision places it: an inverted glass stands on its rim
             truth[name] = {
                 "zone": o.zone,
                 "state": s.bottle_state if name == "bottle" else s.glass_state,
-                "position": [o.pos[0], o.pos[1], o.pos[2] - tz],
+                "position": [float(pos[0]), float(pos[1]), float(pos[2] - tz)],
             }
         return oracle_percept(t, truth)
 

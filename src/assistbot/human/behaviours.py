@@ -17,6 +17,7 @@ import numpy as np
 
 from assistbot.human.arm import SHOULDER_XY, grip_orientation, rot_y, rot_z
 from assistbot.world import layout
+from assistbot.world.state import standing_end
 
 Gen = Generator[None, None, tuple[bool, str]]
 
@@ -27,6 +28,13 @@ HOLD_OUT_BASE_Z = 0.88
 #: a resting place of the hand near the body
 REST = np.array([-0.34, -0.17, 0.86])
 LIFT = 0.07                       # m lifted after a grasp
+#: m that an object carried in the hand keeps from the other objects standing on the table (above, around)
+CARRY_CLEARANCE = 0.03
+#: an object held beyond this table x (toward the robot) is put down on the person's own side instead
+OWN_SIDE_X = -0.15
+#: where the person puts an object down on their own side (table x, y), and how far from the others
+OWN_SIDE_SPOTS = ((-0.24, -0.20), (-0.24, -0.06), (-0.24, 0.08), (-0.24, 0.22))
+OWN_SIDE_CLEAR = 0.12
 #: grasp-site height above the object's base (m), per object and grip
 GRASP_HEIGHT = {("bottle", "ag"): 0.17, ("bottle", "sg"): 0.085, ("glass", "ag"): 0.085, ("glass", "sg"): 0.055}
 DRINK_FRACTION = 0.75             # share of the glass's particles that must reach the mouth
@@ -92,7 +100,22 @@ def _wait_until(c, cond: Callable[[], bool], timeout: float) -> Generator[None, 
 def _move(c, p, R=None, speed: float | None = None, tol: float = 0.03,
           stop: Callable[[], bool] | None = None) -> Generator[None, None, bool]:
     """Reach to p (with rotation R); True when the hand got there (or `stop()` became true on the way:
-    the hand then stays where it is)."""
+    the hand then stays where it is).  An object in the hand is carried over, not through, the objects
+    standing near the way (`_carry_height`): the hand first rises, crosses, then comes down."""
+    high = _carry_height(c, p)
+    if high is not None:
+        hand = c.arm.hand_pose()[0]
+        if hand[2] < high - 0.005:
+            if not (yield from _move_straight(c, np.array([hand[0], hand[1], high]), R, speed, 0.03, stop)):
+                return False
+        if p[2] < high - 0.005:
+            if not (yield from _move_straight(c, np.array([p[0], p[1], high]), R, speed, 0.03, stop)):
+                return False
+    return (yield from _move_straight(c, p, R, speed, tol, stop))
+
+
+def _move_straight(c, p, R=None, speed: float | None = None, tol: float = 0.03,
+                   stop: Callable[[], bool] | None = None) -> Generator[None, None, bool]:
     if c.profile.hesitation > 0:
         yield from _wait(c, c.profile.hesitation)
     dur = c.arm.move_to(p, R, t=c.t, speed=speed)
@@ -105,6 +128,30 @@ def _move(c, p, R=None, speed: float | None = None, tol: float = 0.03,
             return False
         yield
     return True
+
+
+def _carry_height(c, p) -> float | None:
+    """The hand height (world z) at which the object in the hand passes CARRY_CLEARANCE above every other
+    object standing within reach of the straight way to p; None when nothing is in the hand or in the way."""
+    held = c.world.human_holding()
+    if held not in layout.OBJECT_HEIGHT:
+        return None
+    hand = c.arm.hand_pose()[0]
+    below = hand[2] - float(np.min([standing_end(c.world, held)[2], _pos(c, held)[2]]))  # hand above the held object's bottom
+    a, b = hand[:2], np.asarray(p, float)[:2]
+    need = None
+    for other in layout.OBJECT_HEIGHT:
+        if other == held or other == c.world.robot_holding():
+            continue
+        base = standing_end(c.world, other)
+        if base[2] > layout.TABLE_Z + 0.03:     # not standing on the table
+            continue
+        ab = b - a
+        s = float(np.clip((base[:2] - a) @ ab / max(float(ab @ ab), 1e-12), 0.0, 1.0))
+        if np.linalg.norm(base[:2] - (a + s * ab)) < layout.OBJECT_RADIUS[held] + layout.OBJECT_RADIUS[other] + CARRY_CLEARANCE:
+            top = base[2] + layout.OBJECT_HEIGHT[other] + (layout.STOPPER_HEIGHT if other == "bottle" else 0.0)
+            need = max(need or 0.0, top + CARRY_CLEARANCE + below)
+    return need
 
 
 def _to_rest(c) -> Generator[None, None, bool]:
@@ -121,9 +168,8 @@ def _close(c, posture: str, obj: str) -> Generator[None, None, bool]:
 
 
 def _center_base(c, obj: str) -> np.ndarray:
-    """The object's base centre, whichever way up it stands."""
-    p, a = _pos(c, obj), _axis(c, obj)
-    return p - layout.GLASS_HEIGHT * a if (obj == "glass" and a[2] < 0) else p
+    """The centre of the end the object stands on, whichever way up it is (a person's eyes)."""
+    return standing_end(c.world, obj)
 
 
 def grasp_point(c, obj: str, grip: str) -> np.ndarray:
@@ -171,15 +217,34 @@ def hold_out(c, object: str | None = None) -> Gen:
     return (ok and c.world.human_holding() == held), f"{held} held out"
 
 
+def own_side_spot(c, held: str) -> np.ndarray:
+    """A free place on the person's side, back from the hand-over zone, for putting ``held`` down: of
+    OWN_SIDE_SPOTS the one farthest from the other objects standing there (a person's eyes)."""
+    others = [standing_end(c.world, o)[:2] for o in layout.OBJECT_HEIGHT if o != held]
+    spots = np.array(OWN_SIDE_SPOTS, float)
+    clear = np.min([np.linalg.norm(spots - o, axis=1) for o in others], axis=0) if others else np.zeros(len(spots))
+    hand = c.arm.hand_pose()[0][:2]
+    # the farthest from the others, among those far enough the nearest to the hand
+    ok = clear >= OWN_SIDE_CLEAR
+    pick = np.flatnonzero(ok)[np.argmin(np.linalg.norm(spots[ok] - hand, axis=1))] if ok.any() else int(np.argmax(clear))
+    return spots[pick].copy()
+
+
 def put_down(c, object: str | None = None, at: tuple[float, float] | None = None) -> Gen:
-    """Put the object in hand down upright at table spot `at` (default: where the arm is), let go, withdraw."""
+    """Put the object in hand down upright at table spot `at` (default: where it is, or, held out near the
+    middle line, at a free place on this side: `own_side_spot`), let go, withdraw."""
     held = c.world.human_holding()
     if held is None or (object is not None and held != object):
         return False, "nothing in hand to put down"
     base = _center_base(c, held)
     hand, R = c.arm.hand_pose()
     offset = hand - base                                   # hand relative to the object's base
-    spot = np.array([*(at if at is not None else (hand[0], hand[1]))]) if at is not None else base[:2]
+    if at is not None:
+        spot = np.array(at, float)
+    elif base[0] > OWN_SIDE_X and held in layout.OBJECT_HEIGHT:
+        spot = own_side_spot(c, held)
+    else:
+        spot = base[:2]
     target_base = np.array([spot[0], spot[1], layout.TABLE_Z + 0.004])
     if not (yield from _move(c, target_base + offset + np.array([0, 0, 0.04]), R)):
         return False, "could not reach the spot"

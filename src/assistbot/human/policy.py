@@ -47,7 +47,10 @@ def response_to_tag(c, tag: str) -> list[tuple[str, dict]]:
             out.append(("put_down", {}))
         return out + [("pull_stopper", {"wait_for_robot": 30.0})]
     if kind == "take_object":
-        return [("take_from_robot", {"object": what})]
+        # a hand that holds something first puts it down on this side (or holds the bottle out
+        # for ever, while the robot waits to give the glass)
+        first = [("put_down", {})] if holding is not None and holding != what else []
+        return first + [("take_from_robot", {"object": what})]
     if kind == "give_object":
         return [("hand_to_robot", {"object": what, "grip": "ag"})]
     if kind == "drink":
@@ -59,9 +62,13 @@ def response_to_tag(c, tag: str) -> list[tuple[str, dict]]:
 
 
 def response_to_sight(c, key: str) -> list[tuple[str, dict]]:
-    # an active person takes what the robot holds out without being told
-    if key.startswith("robot_offers:") and c.profile.initiative and c.world.human_holding() is None:
-        return [("take_from_robot", {"object": key.split(":", 1)[1]})]
+    # an active person takes what the robot holds out without being told (putting down what the hand holds)
+    if key.startswith("robot_offers:") and c.profile.initiative:
+        what = key.split(":", 1)[1]
+        holding = c.world.human_holding()
+        if holding == what:
+            return []
+        return ([("put_down", {})] if holding is not None else []) + [("take_from_robot", {"object": what})]
     return []
 
 
@@ -85,6 +92,8 @@ def still_relevant(c, name: str, args: dict) -> bool:
         # (take_from_robot itself waits for the offer), but not be holding out something else
         offered = c.view.offers
         return c.world.human_holding() is None and (offered is None or args.get("object") in (None, offered))
+    if name == "put_down":
+        return c.world.human_holding() is not None
     if name == "pull_stopper":
         return bool(c.world.data.eq_active[c.world.eq_stopper])
     return True

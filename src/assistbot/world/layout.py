@@ -34,6 +34,7 @@ GLASS_BASE_TOP = 0.008
 GLASS_HEIGHT = 0.100
 STOPPER_RADIUS = 0.019
 STOPPER_PLUG_DEPTH = 0.020     # the plug reaches this far below the stopper's origin
+STOPPER_HEIGHT = 0.016         # the cap above the neck when closed
 
 PARTICLE_RADIUS = 0.006
 N_PARTICLES = 40
@@ -49,6 +50,8 @@ DEFAULT_POSITIONS = {
 STOPPER_PARK = (-0.30, 0.36)
 
 OBJECT_RADIUS = {"bottle": BOTTLE_RADIUS, "glass": GLASS_RADIUS, "stopper": STOPPER_RADIUS}
+#: base to top (m): the bottle's neck (without the stopper), the glass's rim
+OBJECT_HEIGHT = {"bottle": BOTTLE_MOUTH_Z, "glass": GLASS_HEIGHT}
 
 
 def zone_of(x: float) -> str:

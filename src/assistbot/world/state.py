@@ -67,6 +67,14 @@ def in_glass_region(world, pts: np.ndarray) -> np.ndarray:
     return in_cylinder(pts, d.xpos[gb], d.xmat[gb].reshape(3, 3), layout.GLASS_INNER_RADIUS + 0.002, 0.0, layout.GLASS_HEIGHT + 0.005)
 
 
+def standing_end(world, name: str) -> np.ndarray:
+    """World position of the centre of the end ``name`` stands on: its base, or the rim of an inverted glass
+    (the body's origin is its base centre, and its axis then points down)."""
+    d, b = world.data, world.body_id[name]
+    pos, axis = d.xpos[b], d.xmat[b].reshape(3, 3)[:, 2]
+    return pos + layout.OBJECT_HEIGHT[name] * axis if (name in layout.OBJECT_HEIGHT and axis[2] < -0.707) else pos.copy()
+
+
 def world_state(world) -> WorldState:
     d = world.data
     robot = world.robot_holding()

@@ -10,7 +10,11 @@ measured quantities, never by who is doing what:
   fit gives.
 * the human's grip: an equality weld that `World.human_grasp` turns on only when the hand's
   grasp site is at the object and the hand posture is closed, and that `step` turns off as
-  soon as the hand opens.
+  soon as the hand opens, or when the force it transmits (low-pass filtered like the stopper's
+  pull) exceeds HUMAN_GRIP_YIELD_FORCE: a person's fingers give way under a pull no grip
+  withstands, so a tug of war with the robot ends with one holder. The yield lies above the
+  stopper's fit (the stopper comes off before the fingers slip off it) and below what the
+  robot's friction grip holds.
 """
 
 from __future__ import annotations
@@ -30,6 +34,8 @@ STOPPER_FORCE_TAU = 0.02       # s, low-pass time constant of the measured pull
 LIQUID_LEVEL_FULL = 0.07
 CHECK_EVERY = 5                # physics steps between checks of the stopper fit, the grip and the mouth
 GRASP_REACH = 0.03             # m, how far outside an object's surface the grasp site may be
+HUMAN_GRIP_YIELD_FORCE = 20.0  # N, force on the human's grip weld at which the fingers give way
+HUMAN_GRIP_FORCE_TAU = 0.05    # s, low-pass time constant of that force
 MOUTH_RADIUS = 0.04            # m, a particle this close to the mouth site is drunk
 
 ROBOT_ARM_JOINTS = tuple(f"robot_j{i}" for i in range(1, 8))
@@ -118,7 +124,6 @@ class World:
         self.geom_gripper[gb == self.body_id["robot_gripper"]] = 4
         self._hand_qadr = np.array([m.jnt_qposadr[m.joint(j).id] for j in _CLOSED_MIN])
         self._hand_min = np.array(list(_CLOSED_MIN.values()))
-        self._eq_rows_cache: tuple[int, np.ndarray] | None = None
         self._liquid_geom = m.geom("glass_visual_liquid").id
         self._particle_alpha = m.geom_rgba[self.particle_geoms, 3].copy()
         self.reset()
@@ -165,6 +170,8 @@ class World:
         m.geom_conaffinity[self.particle_geoms] = 0
         m.body_gravcomp[self.particle_bodies] = 0.0
         self._stopper_pull = 0.0
+        self._grip_load = 0.0
+        self.grip_yields: list[tuple[float, str]] = []   # (time, object) where the human's grip gave way
         self._since_check = 0
         mujoco.mj_forward(m, d)
         self.sync_liquid()
@@ -259,21 +266,41 @@ class World:
             self._stopper_pull += dt / (STOPPER_FORCE_TAU + dt) * (self.stopper_pull_force() - self._stopper_pull)
             if self._stopper_pull > STOPPER_RELEASE_FORCE:
                 d.eq_active[self.eq_stopper] = 0
-        if d.eq_active[self._eq_hold_ids].any() and not self.hand_closed():
+        held = self.human_holding()
+        if held is not None and not self.hand_closed():
             self.human_release()
+        elif held is not None:
+            dt = CHECK_EVERY * self.model.opt.timestep
+            self._grip_load += dt / (HUMAN_GRIP_FORCE_TAU + dt) * (self.grip_force(held) - self._grip_load)
+            if self._grip_load > HUMAN_GRIP_YIELD_FORCE:
+                self.human_release()
+                self.grip_yields.append((self.time, held))
+        if held is None or not d.eq_active[self.eq_hold[held]]:
+            self._grip_load = 0.0
         self._drink()
 
     def stopper_pull_force(self) -> float:
         """The stopper fit's constraint force along the bottle's axis, pulling the stopper out (N)."""
         d = self.data
-        # MuJoCo puts the equality rows first (d.ne of them): searching only those keeps this
-        # check cheap while contacts fill the rest of the constraint arrays
-        rows = np.flatnonzero(d.efc_id[:d.ne] == self.eq_stopper)
+        # searching only the equality rows keeps this check cheap while contacts fill the rest
+        rows = self._eq_rows(self.eq_stopper)
         if rows.size < 3:
             return 0.0
         f = d.efc_force[rows[:3]]
         axis = d.xmat[self.body_id["bottle"]].reshape(3, 3)[:, 2]
         return float(f @ axis)
+
+    def _eq_rows(self, eq: int) -> np.ndarray:
+        """The constraint rows of equality ``eq`` (MuJoCo puts the d.ne equality rows first)."""
+        d = self.data
+        return np.flatnonzero(d.efc_id[:d.ne] == eq)
+
+    def grip_force(self, obj: str) -> float:
+        """The force (N) the human's grip weld on ``obj`` transmits now: its translational rows' norm."""
+        rows = self._eq_rows(self.eq_hold[obj])
+        if rows.size < 3:
+            return 0.0
+        return float(np.linalg.norm(self.data.efc_force[rows[:3]]))
 
     # ---------------------------------------------------------------- the human's grip
     def hand_closed(self) -> bool:
