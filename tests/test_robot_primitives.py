@@ -16,7 +16,7 @@ from assistbot.robot import primitives as P
 from assistbot.robot.actions import ACTION_PRIMITIVES, NOT_YET_PHYSICAL
 from assistbot.robot.controller import HANDOVER_DEPTH, RobotController
 from assistbot.robot.primitives import Status
-from assistbot.robot.sim import CONTROL_DT, body_xy, run
+from assistbot.robot.sim import CONTROL_DT, body_lift, body_xy, run
 from assistbot.world import Arrangement, build_world
 from assistbot.task.drinking import ROBOT_ACTIONS
 
@@ -144,7 +144,8 @@ def test_bottle_held_out_by_the_human_is_taken_and_held_for_the_stopper():
     while not (w.human_holding() == "bottle" and human.arm.arrived(w.time, 0.03)) and w.time < 10.0:
         settle(w, CONTROL_DT, human)
     prim = P.HoldBottleForStopper(robot, human_holds=lambda: w.human_holding() == "bottle",
-                                  stopper_removed=lambda: not w.data.eq_active[w.eq_stopper])
+                                  stopper_removed=lambda: not w.data.eq_active[w.eq_stopper], lifted=body_lift(w, "bottle"),
+                                  locate=lambda name: body_xy(w, name)())
     stopper = w.model.body("stopper").id
 
     def tick(t):
@@ -265,7 +266,8 @@ def test_receive_takes_the_object_from_the_human_hand_and_puts_it_in_rws(obj, ar
         settle(w, CONTROL_DT, human)
     assert w.human_holding() == obj
     hand = w.model.site("human_r_grasp").id
-    prim = P.Receive(robot, "held_out", human_holds=lambda: w.human_holding() is not None)
+    prim = P.Receive(robot, obj, human_holds=lambda: w.human_holding() is not None, lifted=body_lift(w, obj),
+                     locate=lambda name: body_xy(w, name)())
     pr, s = run(w, prim, lambda: tuple(w.data.site_xpos[hand][:2]), each_tick=human.tick)
     assert pr.status is Status.SUCCEEDED, pr.reason
     settle(w, 0.5, human)

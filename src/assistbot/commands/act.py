@@ -61,6 +61,7 @@ def run(args: argparse.Namespace) -> int:
     import imageio.v2 as imageio
     import numpy as np
 
+    from assistbot.human.behaviours import HOLD_OUT_BASE_Z
     from assistbot.human.controller import HumanController
     from assistbot.robot import primitives as P
     from assistbot.robot.controller import RobotController
@@ -126,7 +127,7 @@ def run(args: argparse.Namespace) -> int:
                     world.step(10)
                     if human.current is None and world.human_holding():
                         above = 0.17 if world.human_holding() == "bottle" else 0.085
-                        p = np.array([*STAND_IN_HOLD_OUT, P.HUMAN_HOLD_OUT_BASE_Z + above])
+                        p = np.array([*STAND_IN_HOLD_OUT, HOLD_OUT_BASE_Z + above])
                         d = human.arm.move_to(p, human.arm.hand_pose()[1], t=world.time)
                         for _ in range(int((d + 0.5) / 0.02)):
                             tick(world.time)

@@ -16,9 +16,16 @@ from assistbot.robot.actions import ACTION_PRIMITIVES
 from assistbot.robot.controller import RobotController
 from assistbot.robot.primitives import Status
 from assistbot.speech import reading_time
+from assistbot.world.layout import OBJECT_HEIGHT
 
 # How long the robot keeps still for an action that is only speech.
 WAIT_SECONDS = 2.0
+#: Wait lasts at least WAIT_SECONDS, then until the partner's hand has been seen at rest (or away)
+#: for WAIT_REST s, the act it waited for being over, and at most WAIT_MAX s
+WAIT_REST = 1.0
+WAIT_MAX = 20.0
+#: an object seen with its base this low (m above the table) stands on the table
+STANDING_Z = 0.03
 
 
 @dataclass
@@ -39,10 +46,14 @@ class RobotExecutor:
         self.status = "idle"
         self.reason = ""
         self._speech_until = 0.0
+        self._wait_until = 0.0
+        self._rest_since: float | None = None
         self.records: list[ActionRecord] = []
         self._percept: Percept | None = None
         self._last_seen: dict[str, tuple[float, float]] = {}
+        self._standing: dict[str, tuple[float, float]] = {}   # objects last seen standing on the table
         self._held_out_seen = False  # the object the person holds out has been seen during this action
+        self._aim: str | None = None  # what the action's target is perceived as: an object, or "held_out"
 
     # -- what the robot knows of its own body ------------------------------------------------
     def holding(self) -> str | None:
@@ -94,6 +105,35 @@ class RobotExecutor:
             return p.hand.object_in_hand is not None
         return p.hand.object_in_hand == obj
 
+    def _lifted(self, obj: str | None) -> float | None:
+        """Height (m above the table) of the base of ``obj`` held up by the person, as seen now: the
+        object's own triangulated base, else from the hand that holds it (at the object's top for a grip
+        from above, at its middle for one from the side); None when neither is seen."""
+        p = self._percept
+        if p is None or obj is None:
+            return None
+        h = p.hand
+        name = h.object_in_hand if obj == "held_out" else obj
+        o = p.objects.get(name) if name else None
+        if o is not None and o.seen and o.position[2] > STANDING_Z:
+            return float(o.position[2])
+        if h.seen and name is not None and h.object_in_hand == name:
+            height = OBJECT_HEIGHT[name]
+            return float(h.position[2]) - (height if h.posture == "grasp_ag" else height / 2)
+        return None
+
+    def _partner_done(self, t: float) -> bool:
+        """The partner's hand seen at rest (no object-directed posture, nothing in it) or not seen at all,
+        for WAIT_REST s: the act the robot waited for is over."""
+        p = self._percept
+        h = p.hand if p is not None else None
+        resting = h is None or not h.seen or (h.posture == "none" and h.object_in_hand is None)
+        if not resting:
+            self._rest_since = None
+            return False
+        self._rest_since = t if self._rest_since is None else self._rest_since
+        return t - self._rest_since >= WAIT_REST
+
     def _stopper_removed(self) -> bool:
         """Seen, not known: the bottle looks open."""
         p = self._percept
@@ -111,14 +151,21 @@ class RobotExecutor:
         if spec is None:
             self.primitive = None
             self._speech_until = t + (WAIT_SECONDS if action == "Wait" else reading_time(utterance or action))
+            self._wait_until = t + WAIT_MAX if action == "Wait" else self._speech_until
+            self._rest_since = None
             return
-        cls, obj = spec
+        cls, aim = spec
+        self._aim = aim
         self._held_out_seen = False
-        self.primitive = cls(self.robot, obj, human_holds=lambda o=obj: self._human_holds(o),
-                             locate=self._locate, stopper_removed=self._stopper_removed)
+        obj = aim
+        if aim == "held_out" and self._percept is not None and self._percept.hand.seen and self._percept.hand.object_in_hand:
+            obj = self._percept.hand.object_in_hand   # what the person holds out, as seen: what the hand sets out to grasp
+        self.primitive = cls(self.robot, obj, human_holds=lambda: self._human_holds(aim),
+                             locate=self._locate, stopper_removed=self._stopper_removed,
+                             lifted=lambda: self._lifted(aim))
         # hidden right now (often behind the robot's own arm): start from where it was last seen;
         # the gaze goes there and the target field takes over once the cameras see it again
-        self.primitive.start(self._locate(obj))
+        self.primitive.start(self._locate(aim))
 
     def see(self, percept: Percept) -> None:
         self._percept = percept
@@ -129,6 +176,15 @@ class RobotExecutor:
         for name, o in percept.objects.items():
             if o.seen:
                 self._last_seen[name] = (o.position[0], o.position[1])
+                if o.position[2] < STANDING_Z and name != percept.robot.holding:
+                    self._standing[name] = (o.position[0], o.position[1])
+                else:
+                    self._standing.pop(name, None)
+
+    def _obstacles(self) -> dict[str, tuple[float, float] | None]:
+        """The objects the arm keeps clear of: those standing on the table, but for the one it acts on."""
+        acted_on = self.primitive.object if self.primitive is not None else None
+        return {name: xy for name, xy in self._standing.items() if name != acted_on and name != self.holding()}
 
     def tick(self, t: float, dt: float) -> None:
         """One control tick: advance the primitive (or the speech act) and note how it ended."""
@@ -136,10 +192,11 @@ class RobotExecutor:
             self.robot.hold()
             return
         if self.primitive is None:
-            if t >= self._speech_until:
+            if t >= self._speech_until and (self.action != "Wait" or self._partner_done(t) or t >= self._wait_until):
                 self._end(t, "finished", "")
             return
-        prog = self.primitive.tick(dt, self._target_xy(self.primitive.object))
+        self.robot.ik.set_obstacles(self._obstacles())
+        prog = self.primitive.tick(dt, self._target_xy(self._aim))
         if prog.status is Status.SUCCEEDED:
             self._end(t, "finished", "")
         elif prog.status is Status.FAILED:

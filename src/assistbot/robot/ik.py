@@ -8,7 +8,10 @@ keeps ``human_clearance`` (m) from the human's head and torso, the hand
 keeps ``table_clearance`` and the forearm 3 cm from the table top (the hand
 may go near it to grasp), and the forearm and hand keep ``body_clearance``
 from the robot's own column and pedestal (an object close to the robot is
-otherwise reached with the elbow folded into the column). A QP without a
+otherwise reached with the elbow folded into the column), and the arm keeps
+``object_clearance`` from the objects standing where perception saw them
+(`set_obstacles`: the cylinders of `ik_model.OBSTACLES`), so that reaching for
+one it does not sweep the other over. A QP without a
 solution (`mink.NoSolutionFound`) is reported in the `IKResult`, never
 raised; the commanded configuration then stays put.
 """
@@ -24,7 +27,9 @@ import mink
 import mujoco
 import numpy as np
 
-from assistbot.robot.ik_model import ARM_GEOMS, ARM_JOINTS, BODY_GEOMS, HAND_GEOMS, HUMAN_BODY_GEOMS, TABLE_GEOMS, build_ik_model
+from assistbot.robot.ik_model import (ARM_GEOMS, ARM_JOINTS, BODY_GEOMS, HAND_GEOMS, HUMAN_BODY_GEOMS, OBSTACLE_AWAY_Z,
+                                      OBSTACLES, TABLE_GEOMS, build_ik_model, obstacle_geom)
+from assistbot.world.layout import TABLE_Z
 
 #: a relaxed posture: elbow bent, forearm forward, hand above the table in front of the robot
 READY_POSTURE = np.array([-0.77, -0.47, 0.44, 0.74, 0.35, -0.08, 0.29])  # TCP at (0.30, 0.05, 1.00), palm toward -x
@@ -40,6 +45,7 @@ class IKParams:
     human_clearance: float = 0.07   # m between arm geoms and human head/torso (tests require >= 0.05)
     table_clearance: float = 0.005  # m between the hand and the table top
     body_clearance: float = 0.02    # m between the forearm and hand and the robot's column and pedestal
+    object_clearance: float = 0.015  # m between the arm and the objects standing in its way
     detection_distance: float = 0.15  # m: pairs closer than this enter the QP
     collision: bool = True
     speed_scale: float = 0.9        # fraction of the MJCF joint speeds the IK may use
@@ -87,6 +93,9 @@ class ArmIK:
             mink.CollisionAvoidanceLimit(self.model, [(list(ARM_GEOMS[1:]), list(BODY_GEOMS))],
                                          minimum_distance_from_collisions=p.body_clearance,
                                          collision_detection_distance=p.body_clearance + 0.1),
+            mink.CollisionAvoidanceLimit(self.model, [(list(ARM_GEOMS), [obstacle_geom(o) for o in OBSTACLES])],
+                                         minimum_distance_from_collisions=p.object_clearance,
+                                         collision_detection_distance=p.object_clearance + 0.08),
         ]
         # cheap pre-check per collision limit: the arm's bounding spheres against the human's (a lower
         # bound on the distance), the hand's/forearm's lowest point against the table top (static), or
@@ -104,7 +113,11 @@ class ArmIK:
         self._column_xy = d0.geom_xpos[column][:2].copy()
         self._column_r = float(max(m.geom_size[column][0], m.geom_size[m.geom("robot_pedestal").id][0]))
         self._body_rows = self._arm_ids != m.geom(ARM_GEOMS[0]).id   # the upper arm starts at the column
-        self._reach = (p.human_clearance + p.detection_distance, p.table_clearance + 0.05, 0.1, p.body_clearance + 0.1)
+        self._obstacle_body = {o: m.body(obstacle_geom(o)).id for o in OBSTACLES}
+        self._obstacle_ids = gid([obstacle_geom(o) for o in OBSTACLES])
+        self._obstacle_r = m.geom_rbound[self._obstacle_ids]
+        self._reach = (p.human_clearance + p.detection_distance, p.table_clearance + 0.05, 0.1, p.body_clearance + 0.1,
+                       p.object_clearance + 0.08)
         self._lo, self._hi = self.model.jnt_range[:, 0].copy(), self.model.jnt_range[:, 1].copy()
         self._vmax = self.max_speed * p.speed_scale
         self._gain = self.base_limits[0].gain
@@ -123,7 +136,9 @@ class ArmIK:
         low = pa[:, 2] - self._arm_r - self._table_top
         # the column and pedestal are vertical cylinders about one axis: the horizontal gap bounds the distance
         gap_b = np.linalg.norm(pa[self._body_rows, :2] - self._column_xy, axis=1) - self._arm_r[self._body_rows] - self._column_r
-        gaps = (float(gap_h.min()), float(low[self._hand_rows].min()), float(low[~self._hand_rows].min()), float(gap_b.min()))
+        gap_o = np.linalg.norm(pa[:, None, :] - xpos[self._obstacle_ids][None], axis=2) - self._arm_r[:, None] - self._obstacle_r[None]
+        gaps = (float(gap_h.min()), float(low[self._hand_rows].min()), float(low[~self._hand_rows].min()), float(gap_b.min()),
+                float(gap_o.min()))
         return [lim for lim, gap, reach in zip(self.collision_limits, gaps, self._reach) if gap < reach]
 
     def _solve_qp(self, q: np.ndarray, dt: float, collision_limits: list) -> np.ndarray:
@@ -156,6 +171,21 @@ class ArmIK:
         if exitflag <= 0:
             raise mink.NoSolutionFound("daqp")
         return x / dt
+
+    def set_obstacles(self, standing: dict[str, tuple[float, float] | None]) -> None:
+        """Where the objects stand (table x, y), for the arm to keep clear of; None or missing: nowhere."""
+        for name, body in self._obstacle_body.items():
+            xy = standing.get(name)
+            z = TABLE_Z + OBSTACLES[name][1] / 2 if xy is not None else OBSTACLE_AWAY_Z
+            self.model.body_pos[body] = (xy[0], xy[1], z) if xy is not None else (0.0, 0.0, z)
+
+    def obstacles(self) -> dict[str, tuple[float, float] | None]:
+        """The obstacles as last set (table x, y, or None)."""
+        out = {}
+        for name, body in self._obstacle_body.items():
+            pos = self.model.body_pos[body]
+            out[name] = None if pos[2] < 0 else (float(pos[0]), float(pos[1]))
+        return out
 
     def set_posture(self, q: np.ndarray) -> None:
         self.posture_task.set_target(np.asarray(q, float))

@@ -6,7 +6,9 @@ the IK runs on a reduced copy instead: the robot with only its 7 arm joints
 (fingers, spread and head frozen at their zero pose), the table, and the
 human's torso and head (made collidable here, in the copy only, so that
 `CollisionAvoidanceLimit` can keep the arm away from them). The human's arm,
-the objects and the liquid are left out.
+the objects and the liquid are left out. In their place stand OBSTACLES: one upright cylinder
+per task object, of its size, which the arm's IK keeps clear of wherever perception puts the
+object (`ArmIK.set_obstacles`); unused, they stand far below the floor.
 """
 
 from __future__ import annotations
@@ -31,6 +33,17 @@ HAND_GEOMS: tuple[str, ...] = ARM_GEOMS[3:]
 BODY_GEOMS: tuple[str, ...] = ("robot_column", "robot_pedestal")
 
 _DROP_BODIES = ("bottle", "stopper", "glass", "human_r_upper_arm")
+#: object -> (radius, height) of the cylinder that stands for it as an obstacle (m): the bottle with its stopper
+OBSTACLES: dict[str, tuple[float, float]] = {
+    "bottle": (layout.BOTTLE_RADIUS, layout.BOTTLE_MOUTH_Z + layout.STOPPER_HEIGHT),
+    "glass": (layout.GLASS_RADIUS, layout.GLASS_HEIGHT),
+}
+#: where an obstacle that stands for nothing is kept (world z, m)
+OBSTACLE_AWAY_Z = -10.0
+
+
+def obstacle_geom(name: str) -> str:
+    return f"obstacle_{name}"
 
 
 def default_scene_xml() -> Path:
@@ -53,6 +66,10 @@ def build_ik_model(scene_xml: str | Path | None = None) -> mujoco.MjModel:
     for geom in spec.geoms:
         if geom.name in HUMAN_BODY_GEOMS:
             geom.contype, geom.conaffinity = 1, 1
+    for name, (radius, height) in OBSTACLES.items():
+        body = spec.worldbody.add_body(name=obstacle_geom(name), pos=[0.0, 0.0, OBSTACLE_AWAY_Z])
+        body.add_geom(name=obstacle_geom(name), type=mujoco.mjtGeom.mjGEOM_CYLINDER, size=[radius, height / 2, 0],
+                      contype=1, conaffinity=1)
     model = spec.compile()
     assert model.nq == len(ARM_JOINTS), model.nq
     return model

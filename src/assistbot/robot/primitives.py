@@ -44,9 +44,11 @@ import numpy as np
 
 from assistbot.robot import poses
 from assistbot.robot.controller import REACH, TCP_MIN_X, RobotController
+from assistbot.robot.placement import put_down_spot
 from assistbot.robot.target_field import TargetField
+from assistbot.task import OBJECTS
+from assistbot.world.layout import TABLE_Z
 
-TABLE_Z = 0.75
 UNREACHABLE_PATIENCE = 0.3  # s in all that a Move's target may be out of reach before the move fails (3 perception ticks)
 
 
@@ -265,13 +267,17 @@ class Primitive:
     def __init__(self, robot: RobotController, obj: str | None = None, field_: TargetField | None = None,
                  human_holds: Callable[[], bool] | None = None,
                  locate: Callable[[str], tuple[float, float] | None] | None = None,
-                 stopper_removed: Callable[[], bool] | None = None) -> None:
+                 stopper_removed: Callable[[], bool] | None = None,
+                 lifted: Callable[[], float | None] | None = None) -> None:
         """``obj``: the object acted on ("bottle", "glass", "held_out" for whatever the human holds out).
 
         Callbacks (all from perception, never from the physics' ground truth):
           human_holds()      True while the human's hand holds the object (hand-overs).
           locate(name)       table (x, y) of another object, e.g. the glass to pour into; None if unseen.
           stopper_removed()  True once the stopper is seen off the bottle (holding the bottle for it).
+          lifted()           height (m above the table) of the target's base as seen now, when the
+                             person holds it up; None when it is not seen. Grasps from the person's
+                             hand go to that height (`base_z`).
         """
         self.robot = robot
         self.object = obj
@@ -279,6 +285,9 @@ class Primitive:
         self.human_holds = human_holds or (lambda: False)
         self.locate = locate or (lambda name: None)
         self.stopper_removed = stopper_removed or (lambda: False)
+        self.lifted = lifted or (lambda: None)
+        self._lift: float | None = None          # the target's base height above the table, smoothed
+        self._lift_frozen = False                # ... and kept once the object is in the hand
         self.carrying = False
         self._held_xy: np.ndarray | None = None  # target x, y frozen while the object is in the hand
         self._peak: np.ndarray | None = None     # the field's peak this control tick
@@ -297,6 +306,18 @@ class Primitive:
             peak = self.field.target()
             self._peak = np.array(peak if peak is not None else self._xy0, float)
         return self._peak
+
+    def base_z(self) -> float:
+        """World z of the base of a target held up by the person: as perceived (smoothed over
+        LIFT_TAU), LIFT_GUESS above the table until it is first seen."""
+        return TABLE_Z + (self._lift if self._lift is not None else LIFT_GUESS)
+
+    def _see_lift(self, dt: float) -> None:
+        if self._lift_frozen:
+            return
+        h = self.lifted()
+        if h is not None:
+            self._lift = float(h) if self._lift is None else self._lift + min(1.0, dt / LIFT_TAU) * (float(h) - self._lift)
 
     def phases(self) -> list[Phase]:
         raise NotImplementedError
@@ -318,6 +339,8 @@ class Primitive:
             self.field.observe(target_xy)
             self.field.advance(0.3)
         self._peak = None
+        self._lift, self._lift_frozen = None, False
+        self._see_lift(1.0)
         self.robot.reset_command()
         self._held_xy = None
         self.carrying = False
@@ -333,6 +356,7 @@ class Primitive:
         self.field.observe(target_xy)
         self.field.advance(dt)
         self._peak = None
+        self._see_lift(dt)
         self._look()
         self._t += dt
         self._t_total += dt
@@ -360,6 +384,7 @@ class Primitive:
             self.carrying = phase.close
             if phase.close:
                 self._held_xy = self.xy().copy()
+                self._lift_frozen = True
 
 
 # ---------------------------------------------------------------------------
@@ -376,12 +401,10 @@ GLASS_HEIGHT = 0.10
 #: where an object is held out for the human to take: its centre (table x, y) and its base height above the table
 HOLD_OUT_XY = (-0.04, -0.04)
 HOLD_OUT_BASE = 0.11
-#: where the human holds an object out (assistbot.human.behaviours: the base at about 0.85-0.87 m world)
-HUMAN_HOLD_OUT_BASE_Z = 0.86
-#: where a received object is put down in the RWS (table x, y)
-RECEIVE_SPOT = (0.20, 0.0)
-#: where a received object may be put down (table x, y): the free one farthest from what stands in the RWS
-RECEIVE_SPOTS = ((0.20, -0.12), (0.20, 0.12), (0.24, 0.0))
+#: the height (m above the table) assumed for the base of an object held up by the person until it is seen
+LIFT_GUESS = 0.10
+#: time constant (s) over which the perceived height of a held-up object is followed
+LIFT_TAU = 0.2
 
 
 def _point(prim: Primitive, z: float) -> np.ndarray:
@@ -404,9 +427,12 @@ def _grasp_pose_at(prim: Primitive, centre: np.ndarray, obj: str, back: float = 
 
 
 def _side_grasp_pose(prim: Primitive, back: float = 0.0, up: float = 0.0, roll: float = 0.0,
-                     height: float | None = None, base_z: float = TABLE_Z) -> mink.SE3:
+                     height: float | None = None, held_up: bool = False) -> mink.SE3:
+    """Side grasp of the target at its grasp height above its base: on the table, or ``held_up`` by the
+    person at the height perception gives (`Primitive.base_z`)."""
     obj = prim.object or "glass"
     x, y = prim.xy()
+    base_z = prim.base_z() if held_up else TABLE_Z
     c = np.array([x, y, base_z + (height if height is not None else GRASP_HEIGHT.get(obj, 0.06)) + up])
     return _grasp_pose_at(prim, c, obj, back, roll)
 
@@ -424,14 +450,15 @@ def _retract(over_at: float | None = None) -> list[Phase]:
             Move("retract", lambda p: poses.pose(mink.SO3.identity(), READY_POSE_POS), duration=0.6, tolerance=0.04)]
 
 
-def _reach_and_grasp(prim: Primitive, height: float | None = None, base_z: float = TABLE_Z) -> list[Phase]:
+def _reach_and_grasp(prim: Primitive, height: float | None = None, held_up: bool = False) -> list[Phase]:
+    """Reach and grasp the target from the side: standing on the table, or ``held_up`` by the person."""
     return [
         _Open("open"),
         Rise("rise", 1.0),
         Move("ready", lambda p: poses.pose(mink.SO3.identity(), READY_POSE_POS), duration=1.2, tolerance=0.04),
-        Move("above pre-grasp", lambda p: _side_grasp_pose(p, back=0.16, up=0.10, height=height, base_z=base_z), duration=1.5),
-        Move("pre-grasp", lambda p: _side_grasp_pose(p, back=0.16, up=0.0, height=height, base_z=base_z), duration=0.8),
-        Move("approach", lambda p: _side_grasp_pose(p, height=height, base_z=base_z), duration=1.0, tolerance=0.025),
+        Move("above pre-grasp", lambda p: _side_grasp_pose(p, back=0.16, up=0.10, height=height, held_up=held_up), duration=1.5),
+        Move("pre-grasp", lambda p: _side_grasp_pose(p, back=0.16, up=0.0, height=height, held_up=held_up), duration=0.8),
+        Move("approach", lambda p: _side_grasp_pose(p, height=height, held_up=held_up), duration=1.0, tolerance=0.025),
         Grip(True, "grasp"),
     ]
 
@@ -535,18 +562,11 @@ class _FreezeXY(Phase):
 
 
 def free_rws_spot(p: "Primitive") -> np.ndarray:
-    """The place of RECEIVE_SPOTS farthest from the objects seen standing in the RWS (``p.locate``);
-    the object in the robot's hand does not count. RECEIVE_SPOT when nothing else stands there."""
-    tcp = p.robot.tcp_pose().translation()[:2]
-    standing = []
-    for name in ("bottle", "glass"):
-        xy = p.locate(name)
-        if xy is not None and xy[0] > 0.05 and np.hypot(xy[0] - tcp[0], xy[1] - tcp[1]) > 0.08:
-            standing.append(np.asarray(xy, float))
-    if not standing:
-        return np.array(RECEIVE_SPOT, float)
-    spots = [np.array(c, float) for c in RECEIVE_SPOTS]
-    return max(spots, key=lambda c: min(np.hypot(*(c - o)) for o in standing))
+    """Where to put the object in the hand down in the RWS (`placement.put_down_spot`): clear of the
+    corridor to the hand-over place and of the other objects seen standing in the RWS (``p.locate``)."""
+    standing = [np.asarray(xy, float) for xy in (p.locate(n) for n in OBJECTS if n != p.object)
+                if xy is not None and xy[0] > 0.0]
+    return put_down_spot(p.robot.shoulder, REACH, HOLD_OUT_XY, standing, GRASP_HEIGHT.get(p.object, GRASP_HEIGHT["held_out"]))
 
 
 def _put_down_at(xy_of: Callable[[Primitive], np.ndarray], lift: float = LIFT) -> list[Phase]:
@@ -760,7 +780,7 @@ class HoldBottleForStopper(Primitive):
                 *_retract(),
             ]
         if self.xy()[0] < 0.0:  # held out by the human
-            return _reach_and_grasp(self, base_z=HUMAN_HOLD_OUT_BASE_Z) + [
+            return _reach_and_grasp(self, held_up=True) + [
                 Wait("hold", 1.5),
                 WaitFor("wait for the human to let go", lambda p: not p.human_holds(), 10.0, "the human did not let go"),
                 *hold,
@@ -871,8 +891,8 @@ class Receive(Primitive):
     name = "receive"
 
     def __init__(self, robot, obj="held_out", spot=None, timeout: float = 10.0, **kw):
-        """``spot``: where to put the object down; None: the place of RECEIVE_SPOTS farthest from
-        the objects seen standing in the RWS (``locate``), so that a later pour or grasp has room."""
+        """``spot``: where to put the object down; None: a free spot (`free_rws_spot`), so that a
+        later hand-over, pour or grasp has room."""
         super().__init__(robot, obj, **kw)
         self.spot = None if spot is None else np.array(spot, float)
         self.timeout = timeout
@@ -883,7 +903,7 @@ class Receive(Primitive):
         return self.spot
 
     def phases(self):
-        return _reach_and_grasp(self, base_z=HUMAN_HOLD_OUT_BASE_Z) + [
+        return _reach_and_grasp(self, held_up=True) + [
             Wait("hold", 1.5),  # the human feels the robot's grip before letting go
             WaitFor("wait for the human to let go", lambda p: not p.human_holds(), self.timeout,
                     "the human did not let go"),

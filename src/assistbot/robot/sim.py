@@ -102,3 +102,11 @@ def body_xy(world, name: str) -> Callable[[], tuple[float, float]]:
     """Ground-truth table x, y of a body (a stand-in for perception in tests)."""
     b = world.body_id[name] if name in world.body_id else world.model.body(name).id
     return lambda: (float(world.data.xpos[b][0]), float(world.data.xpos[b][1]))
+
+
+def body_lift(world, name: str) -> Callable[[], float]:
+    """Ground-truth height (m) of a body's origin above the table top (a stand-in for perception)."""
+    from assistbot.world.layout import TABLE_Z
+
+    b = world.body_id[name] if name in world.body_id else world.model.body(name).id
+    return lambda: float(world.data.xpos[b][2]) - TABLE_Z
