@@ -318,3 +318,55 @@ def test_a_state_out_of_view_keeps_the_remembered_state_at_the_seen_place(state_
         p.hand = HandPercept(posture="none", seen=True, confidence=0.9)
         cog.update(p)
     assert [k for k in cog.peaks("OML") if k.startswith("bottle")] == bottle_peaks
+
+
+# -- initiative from any state ------------------------------------------------------------------
+
+def _steady(cog, truth, seconds, step=0.1):
+    """Feed the same percept for ``seconds``; return the first decision and when it came."""
+    t = cog.net.t
+    while t < seconds:
+        t = round(t + step, 6)
+        d = cog.update(oracle_percept(t, truth))
+        if d.new:
+            return d.action, t
+    return None, None
+
+
+@pytest.mark.parametrize("truth, expect", [
+    # a passive partner, both objects on their side, the glass upside down: ask for the glass
+    ({"bottle": {"zone": "HWS", "state": "open"}, "glass": {"zone": "HWS", "state": "inverted"},
+      "hand": {"posture": "none"}}, "Request-glass"),
+    # an active partner holds the closed bottle out while the glass is already full on the robot's side:
+    # the act supports little, the partner waits, and the robot hands over the glass
+    ({"bottle": {"zone": "HWS", "state": "closed"}, "glass": {"zone": "RWS", "state": "full"},
+      "hand": {"posture": "grasp_ag", "object_in_hand": "bottle", "held_out": True}}, None),
+])
+def test_the_urge_leads_to_a_decision_within_20_s_from_a_standing_situation(truth, expect):
+    cog = Cognition()
+    action, t = _steady(cog, truth, 20.0)
+    assert action is not None and t <= 20.0
+    if expect:
+        assert action == expect
+    without = Cognition(overrides={"couplings.URGE->AEL.k": 0.0})
+    assert _steady(without, truth, 20.0)[0] is None     # the urge is what decides here
+
+
+def test_a_running_action_keeps_the_urge_down():
+    cog = Cognition()
+    truth = {"bottle": {"zone": "HWS", "state": "open"}, "glass": {"zone": "HWS", "state": "inverted"}, "hand": {"posture": "none"}}
+    action, _ = _steady(cog, truth, 20.0)
+    running = {**truth, "robot": {"action": action, "status": "running"}}
+    for k in range(200):
+        cog.update(oracle_percept(cog.net.t + 0.1, running))
+    assert cog.net.activity("URGE", "urge") < -1.0
+
+
+def test_facts_against_an_actions_requirements_inhibit_it():
+    """The robot cannot turn a glass the person has: with the inverted glass in the HWS, Reach-and-turn-glass
+    gets net negative object input, with it in the RWS positive."""
+    assert "glass_inverted_HWS" in task.facts_against(task.ROBOT_ACTION_BY_NAME["Reach-and-turn-glass"])
+    assert task.facts_against(task.ROBOT_ACTION_BY_NAME["Receive-object"]) == ()
+    row = CognitionConfig().data["couplings"]["OML->AEL"]["table"]["Reach-and-turn-glass"]
+    assert row["glass_inverted_HWS"] < 0 < row["glass_inverted_RWS"]
+    assert row["glass_full_RWS"] < 0    # nor fill a glass that is full

@@ -6,10 +6,12 @@ Layers (fields of `assistbot.fields`, items from `assistbot.task`):
 - OML: object x state x zone memory (survives percept gaps);
 - CSGL past / present / future: achieved, enabled-and-first, not-yet sub-goals;
 - INI: the robot's initiative, rising slowly while the partner shows no act;
+- URGE: the slow part of the initiative, building up over ~10 s while no action of the robot
+  runs, whatever the partner does: from any state a decision follows;
 - ASL: the partner's goal-directed action chain (from OL + OML + CSGL);
 - IL: the partner's intention (from ASL + CSGL + OML);
 - AML: mismatch of the intention with what is possible (IL + ASL/OML);
-- AEL: the complementary action (IL, OML, CSGL, AML, INI), one winner that
+- AEL: the complementary action (IL, OML, CSGL, AML, INI, URGE), one winner that
   sustains itself until the robot reports it finished or failed.
 
 Decisions come from the field dynamics only: the percept becomes Gaussian
@@ -101,6 +103,7 @@ class Cognition:
             self.net.set_stimulus("CSGL_present", g, float(s["present_drive"][g]))
             self.net.set_stimulus("CSGL_future", g, float(s["future_drive"]))
         self.net.set_stimulus("INI", "take-initiative", float(s["ini_drive"]))
+        self.net.set_stimulus("URGE", "urge", float(s["urge_drive"]))
         self.decision: str | None = None       # the committed AEL winner
         self.decision_t: float | None = None
         self.error: str | None = None

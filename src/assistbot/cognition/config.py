@@ -34,6 +34,7 @@ LAYERS: dict[str, tuple[str, ...]] = {
     "CSGL_present": task.SUBGOALS,
     "CSGL_future": task.SUBGOALS,
     "INI": ("take-initiative",),
+    "URGE": ("urge",),
     "ASL": task.ASL_ITEMS,
     "IL": task.IL_ITEMS,
     "AML": task.AML_ITEMS,
@@ -70,6 +71,10 @@ def default_config() -> dict[str, Any]:
         "CSGL_future": _field(0.1, -3.0, 0.8, 0.0),
         # the robot's initiative: rises slowly while the partner shows no motor act
         "INI": _field(1.0, -3.0, 0.0, 0.0),
+        # the slow part of the initiative: builds up over ~10 s while no action runs, whatever the partner
+        # shows, so that a partner who holds still (a passive one, or one waiting with something held out)
+        # never leaves the robot without a decision; a running action keeps it down
+        "URGE": _field(10.0, -3.0, 0.0, 0.0),
         # action simulation, intention, monitoring: one winner each, only while driven
         "ASL": _field(0.08, -3.0, 0.8, 0.6),
         "IL": _field(0.08, -3.0, 0.8, 0.6),
@@ -100,11 +105,15 @@ def default_config() -> dict[str, Any]:
         "ASL->AML": ("ASL", "AML", 2.0, {e.name: e.chains for e in errors}),
         "OML->AML": ("OML", "AML", 2.0, {e.name: e.objects for e in errors}),
         "IL->AEL": ("IL", "AEL", 1.3, {a.name: a.intentions for a in actions}),
-        "OML->AEL": ("OML", "AEL", 1.3, {a.name: a.objects for a in actions}),
+        # an action's own object evidence, and evidence against it where its requirements are not met
+        "OML->AEL": ("OML", "AEL", 1.3, {a.name: {**{o: task.AGAINST_REQUIREMENT for o in task.facts_against(a)}, **a.objects}
+                                         for a in actions}),
         "CSGL_present->AEL": ("CSGL_present", "AEL", 1.3, {a.name: a.present for a in actions}),
         "CSGL_past->AEL": ("CSGL_past", "AEL", 1.3, {a.name: a.past for a in actions}),
         "AML->AEL": ("AML", "AEL", 1.3, {a.name: a.errors for a in actions}),
         "INI->AEL": ("INI", "AEL", 1.3, {a.name: {"take-initiative": a.initiative} for a in actions}),
+        "AEL->URGE": ("AEL", "URGE", 1.0, {"urge": {a.name: -5.0 for a in actions}}),
+        "URGE->AEL": ("URGE", "AEL", 1.3, {a.name: {"urge": 2.0 * a.initiative} for a in actions}),
     }
     return {
         "dt": 0.005,
@@ -118,6 +127,7 @@ def default_config() -> dict[str, Any]:
             "oml": 8.0,           # an object seen in a state and zone
             "oml_against": -10.0,  # the same object seen elsewhere / in another state
             "ini_drive": 4.0,     # tonic drive of the initiative node
+            "urge_drive": 5.0,    # tonic drive of the urge node: it crosses threshold ~9 s after an action ends
             # task drive of the present sub-goals: open before turn (priority), fill and hand-over only when enabled
             "present_drive": {"Open-bottle": 3.8, "Turn-glass": 3.5, "Fill-glass": 1.7, "Hand-over-full-glass": 1.7},
             "future_drive": 4.0,

@@ -29,6 +29,7 @@ from assistbot.task.drinking import (
     SHORT_NAMES,
     SUBGOALS,
     ACHIEVED_BY,
+    AGAINST_REQUIREMENT,
     TAG_RESPONSES,
     UTTERANCES,
     ZONES,
@@ -37,6 +38,7 @@ from assistbot.task.drinking import (
     Intention,
     RobotAction,
     Utterance,
+    facts_against,
     grip_prior,
     oml_item,
 )

@@ -146,7 +146,7 @@ ASL_CHAINS: tuple[Chain, ...] = (
           {"reach_bottle": 0.4, "grasp_ag_bottle": grip_prior("grasp_ag", "bottle", "hand-over"), "hold_out_bottle": 0.6},
           _both("bottle_open", 1.0), {"Fill-glass": 0.5}),
     Chain("Reach-grasp-AG-glass-to-hand-over",
-          {"reach_glass": 0.4, "grasp_ag_glass": grip_prior("grasp_ag", "glass", "hand-over"), "hold_out_glass": 0.6},
+          {"reach_glass": 0.4, "grasp_ag_glass": grip_prior("grasp_ag", "glass", "hand-over"), "hold_out_glass": 1.0},
           {**_both("glass_inverted", 0.6), **_both("glass_empty", 0.6), **_both("glass_full", 0.3)},
           {"Turn-glass": 0.3, "Fill-glass": 0.5}),
     Chain("Reach-grasp-SG-glass-to-turn",
@@ -193,7 +193,10 @@ INTENTIONS: tuple[Intention, ...] = (
               {"Open-bottle": 0.3, "Fill-glass": 0.8},
               {"bottle_closed_RWS": 0.5, "bottle_open_RWS": 0.6}),
     Intention("Give-glass", {"Reach-grasp-AG-glass-to-hand-over": 2.5}, {"Turn-glass": 0.3, "Fill-glass": 0.5}),
-    Intention("Give-bottle", {"Reach-grasp-AG-open-bottle-to-hand-over": 2.5}, {"Fill-glass": 0.5}),
+    # a closed bottle handed over is to be opened while opening it is the sub-goal; once it is not
+    # (the glass already full, say), it is simply given
+    Intention("Give-bottle", {"Reach-grasp-AG-open-bottle-to-hand-over": 2.5, "Reach-grasp-AG-closed-bottle-to-hand-over": 1.2},
+              {"Fill-glass": 0.5, "Hand-over-full-glass": 0.5}),
 )
 IL_ITEMS: tuple[str, ...] = tuple(i.name for i in INTENTIONS)
 
@@ -292,7 +295,7 @@ ROBOT_ACTIONS: tuple[RobotAction, ...] = (
                 intentions={"Give-glass": 0.3},
                 objects={"glass_empty_HWS": 1.0, "glass_inverted_HWS": 0.8, "bottle_open_RWS": 0.4,
                          "glass_empty_RWS": -1.0, "glass_inverted_RWS": -1.0, "glass_full_RWS": -1.0},
-                present={"Fill-glass": 1.0, "Turn-glass": 0.3}, initiative=1.0,
+                present={"Fill-glass": 1.0, "Turn-glass": 1.0}, initiative=1.0,
                 requires={"glass_zone": ("HWS",), "glass_state": ("inverted", "empty")},
                 effects={"glass_zone": "RWS"}, response="give_object"),
     RobotAction("Request-bottle", "bottle", "hold_out_open_hand",
@@ -321,6 +324,26 @@ ROBOT_ACTIONS: tuple[RobotAction, ...] = (
                 objects={"glass_inverted_HWS": 0.6, "bottle_open_HWS": 0.6, "glass_full_HWS": 0.6}),
 )
 AEL_ITEMS: tuple[str, ...] = tuple(a.name for a in ROBOT_ACTIONS)
+
+#: OML -> AEL weight of an object fact that rules an action out (`requires` not met)
+AGAINST_REQUIREMENT = -1.0
+
+
+def facts_against(action: RobotAction) -> tuple[str, ...]:
+    """The OML items that rule ``action`` out: an object in a state or a zone its ``requires`` does not
+    allow (the robot cannot turn a glass the person has, nor fill an inverted one). "held_out" stands
+    for the person's workspace (the object is held out from there); an action on whatever is held out
+    (Receive-object) has no object facts against it."""
+    if action.target == "held_out":
+        return ()
+    out = []
+    for obj, states in OBJECT_STATES.items():
+        ok_states = action.requires.get(f"{obj}_state", states)
+        ok_zones = tuple("HWS" if z == "held_out" else z for z in action.requires.get(f"{obj}_zone", ZONES))
+        if f"{obj}_state" not in action.requires and f"{obj}_zone" not in action.requires:
+            continue
+        out += [oml_item(obj, st, z) for st in states for z in ZONES if st not in ok_states or z not in ok_zones]
+    return tuple(out)
 ROBOT_ACTION_BY_NAME: dict[str, RobotAction] = {a.name: a for a in ROBOT_ACTIONS}
 
 #: what the human can do on his own initiative (an active partner only), for the coverage check.
