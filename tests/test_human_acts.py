@@ -379,3 +379,37 @@ def test_the_persons_grip_holds_a_light_pull_and_gives_way_to_a_strong_one(pull,
     w.data.xfrc_applied[g, 0] = 0.0
     assert (w.human_holding() is None) == yields
     assert bool(w.grip_yields) == yields and (not yields or w.grip_yields[0][1] == "glass")
+
+
+# ---------------------------------------------------------------------------- pour
+@pytest.mark.parametrize("bottle, glass", [((-0.22, -0.12), (-0.22, 0.12)), ((-0.18, 0.15), (-0.22, -0.12))])
+def test_pour_fills_the_glass_on_this_side_and_puts_the_bottle_back(bottle, glass):
+    w, s, hc = _setup(_arr({"zone": "HWS", "state": "open", "position": list(bottle)},
+                           {"zone": "HWS", "state": "empty", "position": list(glass)}))
+    hc.start("pour")
+    _ok(_run_until_done(hc, s, 40.0, "pour"), "pour")
+    st = w.state()
+    assert st.glass_state == "full" and st.liquid.spilled <= 0.1 * st.liquid.total, st.summary()
+    b = w.data.xpos[w.body_id["bottle"]]
+    assert np.hypot(b[0] - bottle[0], b[1] - bottle[1]) < 0.05 and w.data.xmat[w.body_id["bottle"]][8] > 0.99
+    assert st.human_holds is None
+
+
+def test_an_active_person_pours_when_both_are_on_their_side_and_a_closed_bottle_cannot():
+    w, s, hc = _setup(_arr({"zone": "HWS", "state": "open"}, {"zone": "HWS", "state": "empty"}), profile="active")
+    hc.run(1.0, robot=s.tick)
+    assert hc.events("start")[0].what == "pour"
+    w2, s2, hc2 = _setup(_arr({"zone": "HWS", "state": "closed"}, {"zone": "HWS", "state": "empty"}))
+    hc2.start("pour")
+    assert _run_until_done(hc2, s2, 2.0, "pour")[-1].kind == "failure"
+
+
+def test_the_hold_out_habit_is_checked_against_the_region():
+    from assistbot.errors import UserError
+
+    cfg = parse_human({"profile": "passive", "hold_out_dx": -0.08, "hold_out_dz": 0.06})
+    assert cfg.profile_params().hold_out_offset == (-0.08, 0.0, 0.06)
+    for key, value in (("hold_out_dx", 0.09), ("hold_out_dz", -0.07), ("hold_out_dy", "far")):
+        with pytest.raises(UserError) as e:
+            parse_human({"profile": "active", key: value})
+        assert e.value.key == f"human.{key}"

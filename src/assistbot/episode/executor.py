@@ -24,6 +24,8 @@ WAIT_SECONDS = 2.0
 #: for WAIT_REST s, the act it waited for being over, and at most WAIT_MAX s
 WAIT_REST = 1.0
 WAIT_MAX = 20.0
+#: s for which an open hand seen held out still says where the partner wants things handed
+OPEN_HAND_MEMORY = 30.0
 #: an object seen with its base this low (m above the table) stands on the table
 STANDING_Z = 0.03
 
@@ -52,6 +54,7 @@ class RobotExecutor:
         self._percept: Percept | None = None
         self._last_seen: dict[str, tuple[float, float]] = {}
         self._standing: dict[str, tuple[float, float]] = {}   # objects last seen standing on the table
+        self._open_hand: tuple[float, tuple[float, float, float]] | None = None  # (t, where) the open hand was seen held out
         self._held_out_seen = False  # the object the person holds out has been seen during this action
         self._aim: str | None = None  # what the action's target is perceived as: an object, or "held_out"
 
@@ -122,6 +125,13 @@ class RobotExecutor:
             return float(h.position[2]) - (height if h.posture == "grasp_ag" else height / 2)
         return None
 
+    def _partner_hand(self) -> tuple[float, float, float] | None:
+        """Where the partner's open hand was last seen held out (table x, y, z), within OPEN_HAND_MEMORY s."""
+        now = self._percept.t if self._percept is not None else 0.0
+        if self._open_hand is None or now - self._open_hand[0] > OPEN_HAND_MEMORY:
+            return None
+        return self._open_hand[1]
+
     def _partner_done(self, t: float) -> bool:
         """The partner's hand seen at rest (no object-directed posture, nothing in it) or not seen at all,
         for WAIT_REST s: the act the robot waited for is over."""
@@ -162,7 +172,7 @@ class RobotExecutor:
             obj = self._percept.hand.object_in_hand   # what the person holds out, as seen: what the hand sets out to grasp
         self.primitive = cls(self.robot, obj, human_holds=lambda: self._human_holds(aim),
                              locate=self._locate, stopper_removed=self._stopper_removed,
-                             lifted=lambda: self._lifted(aim))
+                             lifted=lambda: self._lifted(aim), partner_hand=self._partner_hand)
         # hidden right now (often behind the robot's own arm): start from where it was last seen;
         # the gaze goes there and the target field takes over once the cameras see it again
         self.primitive.start(self._locate(aim))
@@ -170,6 +180,8 @@ class RobotExecutor:
     def see(self, percept: Percept) -> None:
         self._percept = percept
         h = percept.hand
+        if h.seen and h.posture == "open_palm_request" and h.held_out:
+            self._open_hand = (percept.t, tuple(float(v) for v in h.position))
         held = percept.objects.get(h.object_in_hand) if h.seen and h.object_in_hand else None
         if held is not None and held.seen:
             self._held_out_seen = True

@@ -35,6 +35,8 @@ def _hand_truth(world, human) -> dict:
         out["posture"] = "remove_stopper"
     elif behaviour == "drink" and holding == "glass":
         out["posture"] = "drink"
+    elif behaviour == "pour" and holding == "bottle" and world.data.xmat[world.body_id["bottle"]][8] < 0.8:
+        out["posture"] = "pour"        # the bottle tilted, not while it is still being grasped or put back
     elif holding is not None and posture in ("ag", "sg"):
         out["posture"] = "grasp_ag" if posture == "ag" else "grasp_sg"
     elif posture == "request":

@@ -25,6 +25,17 @@ Gen = Generator[None, None, tuple[bool, str]]
 HOLD_OUT = np.array([-0.05, -0.05, 0.97])
 #: lowest height (world z) of a held-out object's base: about 10 cm above the table
 HOLD_OUT_BASE_Z = 0.88
+#: the robot's open hand held out still this long (s) within MEET_MAX of what the person holds out,
+#: without taking it, is taken as the robot reaching as far as it can: the person brings the object
+#: into it, then MEET_STEP further up or aside toward the robot's shoulder each time, MEET_TRIES times
+MEET_STILL = 1.5
+MEET_MAX = 0.30
+MEET_STEP = 0.06
+MEET_TRIES = 3
+#: N: an object pressing back in the person's grip this hard has met something (the robot's hand)
+FEEL_FORCE = 6.0
+#: the hand's height (world z) while it holds an object just taken from the robot, in toward the body
+TAKEN_Z = 0.90
 #: a resting place of the hand near the body
 REST = np.array([-0.34, -0.17, 0.86])
 LIFT = 0.07                       # m lifted after a grasp
@@ -46,6 +57,11 @@ TILT_MAX = 2.1                    # rad, glass tilt at the end of a drink
 LIP_OFFSET = np.array([0.015, 0.0, -0.015])
 #: yaw (rad, about the vertical, to the left) of the side-grip hand while drinking
 DRINK_YAW = 0.75
+#: how far (rad) the person tilts the bottle to pour, its mouth this far above the glass's rim (m), and
+#: how long they hold it there at most (s)
+POUR_TILT = np.radians(125)
+MOUTH_ABOVE_RIM = 0.03
+POUR_TIMEOUT = 6.0
 
 
 @dataclass
@@ -201,17 +217,64 @@ def grasp(c, object: str, grip: str = "ag", lift: bool = True, hold_out: bool = 
     return c.world.human_holding() == object, f"{object} in hand"
 
 
+def hold_out_point(c) -> np.ndarray:
+    """Where this person holds things (and the open hand) out: HOLD_OUT moved by the profile's habit."""
+    return HOLD_OUT + np.asarray(c.profile.hold_out_offset, float)
+
+
+def _middle(c, obj: str) -> np.ndarray:
+    """The middle of an object held about upright or upside down (world): half its height above the end it stands on."""
+    return standing_end(c.world, obj) + np.array([0.0, 0.0, 0.5 * layout.OBJECT_HEIGHT[obj]])
+
+
+def _give_into_the_robots_hand(c, held: str, timeout: float) -> Gen:
+    """Hold ``held`` out until the robot holds it (True) or ``timeout`` s pass (False). Meanwhile, when the
+    robot's open, empty hand has been held out still for MEET_STILL s near the object without taking it
+    (it cannot reach further), bring the object into it, as a person handing something over does; if it
+    still does not take it, MEET_STEP more each time up or aside toward the robot's shoulder: the arm
+    stops at the middle line, so what it cannot give in depth it gives in height and to the side. At
+    most MEET_TRIES times."""
+    t_end = c.t + timeout
+    last, still_since, tries = None, None, 0
+    while c.view.holds != held:
+        if c.t >= t_end or c.world.human_holding() != held:
+            return False
+        v = c.view
+        tcp = np.array(v.hand_pos, float)
+        if not v.requests:
+            last, still_since = None, None
+        elif last is None or np.linalg.norm(tcp - last) > 0.01:   # moved on: still from here
+            last, still_since = tcp, c.t
+        middle = _middle(c, held)
+        gap = tcp - middle
+        if (still_since is not None and c.t - still_since >= MEET_STILL and np.linalg.norm(gap) < MEET_MAX
+                and tries < MEET_TRIES):
+            # first into the open hand; then, as it still cannot take it, on up or aside toward its shoulder
+            toward = np.array(v.shoulder, float) - middle
+            toward[0] = 0.0
+            hand, R = c.arm.hand_pose()
+            step = MEET_STEP * tries * toward / max(float(np.linalg.norm(toward)), 1e-9)
+            # stopping where it meets the hand: felt as the object pressing back in the grip
+            yield from _move_straight(c, hand + gap + step, R, speed=0.1,
+                                      stop=lambda: c.view.holds == held or c.world.grip_force(held) > FEEL_FORCE)
+            last, still_since, tries = None, None, tries + 1
+            continue
+        yield
+    return True
+
+
 def hold_out(c, object: str | None = None) -> Gen:
     """Hold the object in hand out toward the robot, in the hand-over zone."""
     held = c.world.human_holding()
     if held is None or (object is not None and held != object):
         return False, "nothing to hold out" if held is None else f"holds the {held}, not the {object}"
-    # keep the grip, turned about the vertical so the fingers point along the shoulder's bearing to HOLD_OUT
+    # keep the grip, turned about the vertical so the fingers point along the shoulder's bearing to the point
     _, R = c.arm.hand_pose()
-    bearing = np.arctan2(*(HOLD_OUT[:2] - SHOULDER_XY)[::-1])
+    target = hold_out_point(c)
+    bearing = np.arctan2(*(target[:2] - SHOULDER_XY)[::-1])
     R = rot_z(bearing - np.arctan2(-R[1, 2], -R[0, 2])) @ R
-    target = HOLD_OUT.copy()
-    target[2] = max(target[2], HOLD_OUT_BASE_Z + float(c.arm.hand_pose()[0][2] - _center_base(c, held)[2]))
+    lowest = HOLD_OUT_BASE_Z + c.profile.hold_out_dz
+    target[2] = max(target[2], lowest + float(c.arm.hand_pose()[0][2] - _center_base(c, held)[2]))
     # the robot may take hold of it before the arm is fully out: the hand then stops there
     ok = yield from _move(c, target, R, stop=lambda: c.view.holds == held)
     return (ok and c.world.human_holding() == held), f"{held} held out"
@@ -269,7 +332,7 @@ def hand_to_robot(c, object: str, grip: str | None = None, timeout: float = 20.0
     ok, why = yield from hold_out(c, object)
     if not ok:
         return False, why
-    if not (yield from _wait_until(c, lambda: c.view.holds == object, timeout)):
+    if not (yield from _give_into_the_robots_hand(c, object, timeout)):
         return False, f"the robot did not take the {object}"
     yield from _wait(c, c.profile.reaction_delay)
     c.arm.set_posture("open")
@@ -290,7 +353,9 @@ def take_from_robot(c, object: str | None = None, timeout: float = 20.0) -> Gen:
     if not (yield from _wait_until(c, lambda: c.view.holds != obj, timeout)):
         c.arm.set_posture("open")
         return False, f"the robot did not let go of the {obj}"
-    yield from _move(c, np.array([-0.26, -0.08, 0.90]), None)
+    # brought in toward the body, above a free place on this side (not over what stands there)
+    spot = own_side_spot(c, obj)
+    yield from _move(c, np.array([spot[0], spot[1], TAKEN_Z]), None)
     return c.world.human_holding() == obj, f"took the {obj}"
 
 
@@ -301,8 +366,9 @@ def request(c, hold: float = 3.0) -> Gen:
     if c.world.human_holding() is not None:
         return False, "the hand is not empty"
     c.arm.set_posture("request")
-    R = grip_orientation("request", HOLD_OUT)
-    ok = yield from _move(c, HOLD_OUT, R)
+    at = hold_out_point(c)
+    R = grip_orientation("request", at)
+    ok = yield from _move(c, at, R)
     yield from _wait(c, hold)
     c.arm.set_posture("open")
     yield from _to_rest(c)
@@ -470,6 +536,56 @@ def drink(c, timeout: float = 6.0, put_back: bool = True) -> Gen:
     return bool(got), f"drank {drunk} of {n0} particles"
 
 
+def _rodrigues(axis: np.ndarray, angle: float) -> np.ndarray:
+    a = np.asarray(axis, float) / np.linalg.norm(axis)
+    K = np.array([[0, -a[2], a[1]], [a[2], 0, -a[0]], [-a[1], a[0], 0]])
+    return np.eye(3) + np.sin(angle) * K + (1 - np.cos(angle)) * K @ K
+
+
+def pour(c, timeout: float = POUR_TIMEOUT) -> Gen:
+    """Fill the upright glass on this side from the open bottle: a side grip on the bottle, lifted beside
+    the glass toward the palm, then tilted toward the palm while its mouth comes over the rim, held until
+    the glass looks full (a person's eyes: WorldState), tilted back and put back where it stood."""
+    w = c.world
+    if w.data.eq_active[w.eq_stopper]:
+        return False, "the bottle is closed"
+    if _axis(c, "glass")[2] < 0.9:
+        return False, "the glass is not upright"
+    base0 = _center_base(c, "bottle")[:2].copy()
+    if w.human_holding() != "bottle":
+        ok, why = yield from grasp(c, "bottle", "sg")
+        if not ok:
+            return False, why
+    hand, R0 = c.arm.hand_pose()
+    Rb = w.data.xmat[w.body_id["bottle"]].reshape(3, 3)
+    mouth_in_hand = R0.T @ (_pos(c, "bottle") + Rb @ np.array([0.0, 0.0, layout.BOTTLE_MOUTH_Z]) - hand)
+    palm = R0[:, 1].copy()
+    palm[2] = 0.0
+    palm /= max(float(np.linalg.norm(palm)), 1e-9)
+    tip = np.cross([0.0, 0.0, 1.0], palm)          # tilting about this turns the bottle's top toward the palm
+    rim = _center_base(c, "glass") + np.array([0.0, 0.0, layout.GLASS_HEIGHT])
+    beside = layout.GLASS_RADIUS + layout.BOTTLE_RADIUS + 0.02
+
+    def pose(f: float):
+        """Fraction f of the pour: 0 upright beside the glass with its base above the rim, 1 fully tilted."""
+        Rh = _rodrigues(tip, f * POUR_TILT) @ R0
+        mouth = rim - palm * beside * (1.0 - f) + np.array([0.0, 0.0, MOUTH_ABOVE_RIM + (1.0 - f) * layout.BOTTLE_MOUTH_Z])
+        return mouth - Rh @ mouth_in_hand, Rh
+
+    p, R = pose(0.0)
+    if not (yield from _move(c, p, R)):
+        return False, "could not bring the bottle to the glass"
+    for f in np.linspace(0.2, 1.0, 5):
+        p, R = pose(float(f))
+        yield from _move(c, p, R, speed=0.08, tol=0.04)
+    full = yield from _wait_until(c, lambda: w.state().glass_state == "full", timeout)
+    for f in np.linspace(0.75, 0.0, 4):
+        p, R = pose(float(f))
+        yield from _move(c, p, R, speed=0.08, tol=0.04)
+    yield from put_down(c, "bottle", at=tuple(base0))
+    return bool(full), "glass filled" if full else "the glass did not fill"
+
+
 def wait(c, seconds: float) -> Gen:
     """Do nothing for `seconds`."""
     yield from _wait(c, seconds)
@@ -479,5 +595,5 @@ def wait(c, seconds: float) -> Gen:
 BEHAVIOURS: dict[str, Callable[..., Gen]] = {
     "grasp": grasp, "hold_out": hold_out, "put_down": put_down, "hand_to_robot": hand_to_robot,
     "take_from_robot": take_from_robot, "request": request, "point": point, "pull_stopper": pull_stopper,
-    "turn_glass": turn_glass, "drink": drink, "wait": wait,
+    "turn_glass": turn_glass, "drink": drink, "pour": pour, "wait": wait,
 }

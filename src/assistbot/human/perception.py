@@ -20,6 +20,7 @@ import numpy as np
 #: it works at the robot's own places (x >= 0.10)
 HELD_OUT_X = 0.08
 OPEN_FINGERS = 0.3   # rad, finger flexion below which the robot's hand looks open
+SHOULDER_BODY = "robot_link1"   # the robot's shoulder: where its arm comes from, as a person sees it
 
 
 @dataclass(frozen=True)
@@ -30,6 +31,7 @@ class RobotView:
     hand_pos: tuple[float, float, float]
     held_out: bool                     # the hand is near the middle line, toward the human
     open_hand: bool                    # the hand is open and empty
+    shoulder: tuple[float, float, float] = (0.62, 0.2, 1.2)   # where the robot's arm comes from
 
     @property
     def offers(self) -> str | None:
@@ -45,21 +47,22 @@ class RobotView:
 _INDEX: "weakref.WeakKeyDictionary[object, tuple[int, np.ndarray]]" = weakref.WeakKeyDictionary()
 
 
-def _index(world) -> tuple[int, np.ndarray]:
-    """(tcp site id, finger joint qpos addresses) of a world, looked up once."""
+def _index(world) -> tuple[int, np.ndarray, int]:
+    """(tcp site id, finger joint qpos addresses, shoulder body id) of a world, looked up once."""
     got = _INDEX.get(world)
     if got is None:
         m = world.model
         qadr = np.array([m.jnt_qposadr[m.actuator_trnid[m.actuator(a).id, 0]]
                          for a in ("robot_finger1", "robot_finger2", "robot_finger3")])
-        got = _INDEX[world] = (world.site_id["robot_tcp"], qadr)
+        got = _INDEX[world] = (world.site_id["robot_tcp"], qadr, m.body(SHOULDER_BODY).id)
     return got
 
 
 def see_robot(world) -> RobotView:
-    tcp_id, finger_qadr = _index(world)
+    tcp_id, finger_qadr, shoulder_id = _index(world)
     d = world.data
     tcp = d.site_xpos[tcp_id]
     holds = world.robot_holding()
     return RobotView(holds, (float(tcp[0]), float(tcp[1]), float(tcp[2])), bool(abs(tcp[0]) < HELD_OUT_X),
-                     bool(holds is None and float(d.qpos[finger_qadr].max()) < OPEN_FINGERS))
+                     bool(holds is None and float(d.qpos[finger_qadr].max()) < OPEN_FINGERS),
+                     tuple(float(v) for v in d.xpos[shoulder_id]))

@@ -11,7 +11,7 @@ from __future__ import annotations
 from assistbot.task.drinking import TAG_RESPONSES
 
 #: behaviours that a robot's utterance does not interrupt (the hand is busy with an object)
-UNINTERRUPTIBLE = ("pull_stopper", "drink", "put_down", "turn_glass", "take_from_robot", "hand_to_robot")
+UNINTERRUPTIBLE = ("pull_stopper", "drink", "put_down", "turn_glass", "pour", "take_from_robot", "hand_to_robot")
 
 
 #: the grasp site beyond this x (toward the robot) holds an object out (the hold-out point is at x = -0.05)
@@ -111,6 +111,10 @@ def next_move(c) -> tuple[str, dict] | None:
     if s["glass_x"] < 0 and s["glass_up"] < -0.7 and not st.get("turn"):
         st["turn"] = True
         return ("turn_glass", {})
+    if (s["bottle_x"] < 0 and not s["bottle_closed"] and s["glass_x"] < 0 and s["glass_up"] > 0.9 and not s["glass_full"]
+            and not st.get("pour")):
+        st["pour"] = True
+        return ("pour", {})
     if s["bottle_x"] < 0 and s["bottle_closed"] and not st.get("bottle"):
         st["bottle"] = True
         grip = c.profile.grip

@@ -4,6 +4,9 @@ from __future__ import annotations
 
 from dataclasses import dataclass, replace
 
+#: how far (m) a person's hold-out point may lie from the nominal one, per axis (x, y, z)
+HOLD_OUT_REGION = (0.08, 0.08, 0.06)
+
 
 @dataclass(frozen=True)
 class Profile:
@@ -15,6 +18,8 @@ class Profile:
     grip            preferred grip for hand-overs and hold-outs: "ag" (above) or "sg" (side)
     wrong_grip      chance (0..1) that the default policy first grasps with the other grip
     hesitation      s of pause before each motion (a person who hesitates)
+    hold_out_dx/dy/dz  where this person holds things out and the open hand: m from the nominal
+                    point (behaviours.HOLD_OUT), within HOLD_OUT_REGION
     """
 
     name: str
@@ -24,6 +29,13 @@ class Profile:
     grip: str = "ag"
     wrong_grip: float = 0.3
     hesitation: float = 0.0
+    hold_out_dx: float = 0.0
+    hold_out_dy: float = 0.0
+    hold_out_dz: float = 0.0
+
+    @property
+    def hold_out_offset(self) -> tuple[float, float, float]:
+        return (self.hold_out_dx, self.hold_out_dy, self.hold_out_dz)
 
     def with_(self, **changes) -> "Profile":
         return replace(self, **changes)

@@ -9,6 +9,9 @@ Schema (YAML)::
       grip: ag                   # preferred grip: ag | sg
       wrong_grip: 0.3            # chance of first trying the other grip (default policy)
       hesitation: 0.0            # s of pause before each motion
+      hold_out_dx: 0.0           # where things are held out: m from the nominal point (x, y within
+      hold_out_dy: 0.0           #   ±0.08, z within ±0.06)
+      hold_out_dz: 0.0
       script:                    # optional; an active human without one uses its default policy
         - {do: grasp, object: bottle, grip: side, hold_out: true}
         - {do: put_down, object: bottle, at: [-0.25, -0.15]}
@@ -19,7 +22,7 @@ Schema (YAML)::
 
 Steps: grasp (object, grip, hold_out), hold_out, put_down (object, at), hand_over (object,
 grip), take (object), request (gesture: open_hand), point (object), pull_stopper,
-turn_glass, drink, wait (seconds).  Grips: ag/above, sg/side.  ``after:`` one event:
+turn_glass, pour, drink, wait (seconds).  Grips: ag/above, sg/side.  ``after:`` one event:
 ``robot_said: <tag>``, ``robot_holds: <object>``, ``robot_offers: <object>``,
 ``robot_requests``, ``stopper_removed``, ``glass_full``, ``glass_upright``,
 ``time: <s>``, ``done: <step>``.  Mistakes raise `UserError(where, key, message)`.
@@ -31,7 +34,7 @@ from dataclasses import dataclass, field
 from typing import Any, Mapping
 
 from assistbot.errors import UserError
-from assistbot.human.profiles import PROFILES, Profile
+from assistbot.human.profiles import HOLD_OUT_REGION, PROFILES, Profile
 
 OBJECTS = ("bottle", "glass")
 GRIPS = {"ag": "ag", "above": "ag", "sg": "sg", "side": "sg"}
@@ -46,13 +49,14 @@ STEPS: dict[str, tuple[str, tuple[str, ...], tuple[str, ...]]] = {
     "point": ("point", ("object",), ("object",)),
     "pull_stopper": ("pull_stopper", (), ()),
     "turn_glass": ("turn_glass", (), ()),
+    "pour": ("pour", (), ()),
     "drink": ("drink", (), ()),
     "wait": ("wait", ("seconds",), ("seconds",)),
 }
 EVENTS_WITH_OBJECT = ("robot_holds", "robot_offers")
 EVENTS_PLAIN = ("robot_requests", "stopper_removed", "glass_full", "glass_upright")
 EVENTS = ("robot_said", *EVENTS_WITH_OBJECT, *EVENTS_PLAIN, "time", "done")
-PARAMS = ("reaction_delay", "speed", "grip", "wrong_grip", "hesitation")
+PARAMS = ("reaction_delay", "speed", "grip", "wrong_grip", "hesitation", "hold_out_dx", "hold_out_dy", "hold_out_dz")
 
 
 def _known_tags() -> set[str]:
@@ -124,6 +128,10 @@ def parse_human(mapping: Any, where: str = "scenario") -> HumanConfig:
             raise UserError(where, "human.speed", f"mean hand speed in m/s between 0.02 and 1.0, got {v:g}")
         if k in ("reaction_delay", "hesitation") and not 0.0 <= v <= 10.0:
             raise UserError(where, f"human.{k}", f"seconds between 0 and 10, got {v:g}")
+        if k.startswith("hold_out_d"):
+            limit = HOLD_OUT_REGION["xyz".index(k[-1])]
+            if not -limit <= v <= limit:
+                raise UserError(where, f"human.{k}", f"metres from the nominal hold-out point within ±{limit:g}, got {v:g}")
         overrides[k] = v
     script = mapping.get("script", [])
     if script is None:

@@ -47,9 +47,10 @@ from assistbot.robot.controller import REACH, TCP_MIN_X, RobotController
 from assistbot.robot.placement import put_down_spot
 from assistbot.robot.target_field import TargetField
 from assistbot.task import OBJECTS
-from assistbot.world.layout import TABLE_Z
+from assistbot.world.layout import OBJECT_HEIGHT, TABLE_Z
 
 UNREACHABLE_PATIENCE = 0.3  # s in all that a Move's target may be out of reach before the move fails (3 perception ticks)
+REACH_WAIT = 12.0           # s a reaching-out move waits for its goal to come within reach
 
 
 class Status(enum.Enum):
@@ -78,18 +79,38 @@ class Phase:
 
 
 class Move(Phase):
-    """Minimum-jerk TCP motion from the current commanded pose to ``goal(prim)`` (re-read every tick)."""
+    """Minimum-jerk TCP motion from the current commanded pose to ``goal(prim)`` (re-read every tick).
+
+    ``reach_out``: a goal out of the arm's reach (an object the person holds out too far) is not a
+    failure at once: the hand goes as far toward it as it can and waits there, open, up to REACH_WAIT
+    s, for the goal to come within reach (the person, seeing the hand held out for what they hold,
+    brings it closer); the move then goes on to the goal itself."""
 
     def __init__(self, name: str, goal: Callable[["Primitive"], mink.SE3], duration: float = 1.5,
-                 tolerance: float = 0.02, settle: float = 1.5, check_reach: bool = True) -> None:
+                 tolerance: float = 0.02, settle: float = 1.5, check_reach: bool = True, reach_out: bool = False) -> None:
         self.name, self.goal, self.duration = name, goal, duration
-        self.tolerance, self.settle, self.check_reach = tolerance, settle, check_reach
+        self.tolerance, self.settle, self.check_reach, self.reach_out = tolerance, settle, check_reach, reach_out
         self.timeout = duration + settle
 
     def start(self, prim: "Primitive") -> None:
         self.origin = prim.robot.commanded_tcp_pose()
         self.failures = 0
         self.unreachable = 0.0  # s this move's target has been out of reach
+        self.waited = 0.0       # s spent reaching out toward an unreachable goal
+        self.reaching = False   # reaching out right now
+        self.t0 = 0.0           # phase time the move (re)started at
+
+    @staticmethod
+    def _within_reach(prim, goal: mink.SE3) -> mink.SE3:
+        """The goal moved back along the line to the shoulder until the arm reaches it, never deeper into the
+        HWS than TCP_MIN_X: the open hand held out in front of what it reaches for, fingers toward it."""
+        pos = goal.translation().copy()
+        sh = prim.robot.shoulder
+        d = float(np.linalg.norm(pos - sh))
+        if d > REACH - 0.005:
+            pos = sh + (pos - sh) * (REACH - 0.005) / d
+        pos[0] = max(pos[0], TCP_MIN_X)
+        return poses.pose(goal.rotation(), pos)
 
     def _unreachable(self, prim, goal: mink.SE3) -> str:
         dist = prim.robot.reach_distance(goal.translation())
@@ -103,6 +124,17 @@ class Move(Phase):
     def tick(self, prim, dt, t):
         goal = self.goal(prim)
         why = self._unreachable(prim, goal) if self.check_reach else ""
+        if why and self.reach_out:
+            self.waited += dt
+            if self.waited >= REACH_WAIT:
+                return Status.FAILED, why
+            via = poses.interpolate(self.origin, self._within_reach(prim, goal), poses.min_jerk((t - self.t0) / self.duration))
+            prim.robot.move_toward(via, dt)
+            self.reaching = True
+            return Status.RUNNING, ""
+        if self.reaching:   # the goal has come within reach: a move of its own from where the hand is
+            self.reaching, self.origin, self.t0 = False, prim.robot.commanded_tcp_pose(), t
+        t -= self.t0
         if why:
             # one misread frame must not end the action: the arm waits where it is, and the move
             # fails once its target has been out of reach for UNREACHABLE_PATIENCE in all
@@ -268,7 +300,8 @@ class Primitive:
                  human_holds: Callable[[], bool] | None = None,
                  locate: Callable[[str], tuple[float, float] | None] | None = None,
                  stopper_removed: Callable[[], bool] | None = None,
-                 lifted: Callable[[], float | None] | None = None) -> None:
+                 lifted: Callable[[], float | None] | None = None,
+                 partner_hand: Callable[[], tuple[float, float, float] | None] | None = None) -> None:
         """``obj``: the object acted on ("bottle", "glass", "held_out" for whatever the human holds out).
 
         Callbacks (all from perception, never from the physics' ground truth):
@@ -278,6 +311,8 @@ class Primitive:
           lifted()           height (m above the table) of the target's base as seen now, when the
                              person holds it up; None when it is not seen. Grasps from the person's
                              hand go to that height (`base_z`).
+          partner_hand()     table (x, y, z) where the person's open hand was last seen held out, or
+                             None; objects are offered there (`offer_point`).
         """
         self.robot = robot
         self.object = obj
@@ -286,6 +321,8 @@ class Primitive:
         self.locate = locate or (lambda name: None)
         self.stopper_removed = stopper_removed or (lambda: False)
         self.lifted = lifted or (lambda: None)
+        self.partner_hand = partner_hand or (lambda: None)
+        self._offer: np.ndarray | None = None
         self._lift: float | None = None          # the target's base height above the table, smoothed
         self._lift_frozen = False                # ... and kept once the object is in the hand
         self.carrying = False
@@ -401,6 +438,9 @@ GLASS_HEIGHT = 0.10
 #: where an object is held out for the human to take: its centre (table x, y) and its base height above the table
 HOLD_OUT_XY = (-0.04, -0.04)
 HOLD_OUT_BASE = 0.11
+#: how low and how high an offered object's base is held above the table (m), whatever the hand it is
+#: offered to: a hand shown higher takes it from the side no higher than a seated arm reaches well
+OFFER_BASE = (0.05, 0.12)
 #: the height (m above the table) assumed for the base of an object held up by the person until it is seen
 LIFT_GUESS = 0.10
 #: time constant (s) over which the perceived height of a held-up object is followed
@@ -451,14 +491,18 @@ def _retract(over_at: float | None = None) -> list[Phase]:
 
 
 def _reach_and_grasp(prim: Primitive, height: float | None = None, held_up: bool = False) -> list[Phase]:
-    """Reach and grasp the target from the side: standing on the table, or ``held_up`` by the person."""
+    """Reach and grasp the target from the side: standing on the table, or ``held_up`` by the person (the
+    hand then reaches out for it as far as it can, and waits for it there: `Move.reach_out`)."""
     return [
         _Open("open"),
         Rise("rise", 1.0),
         Move("ready", lambda p: poses.pose(mink.SO3.identity(), READY_POSE_POS), duration=1.2, tolerance=0.04),
-        Move("above pre-grasp", lambda p: _side_grasp_pose(p, back=0.16, up=0.10, height=height, held_up=held_up), duration=1.5),
-        Move("pre-grasp", lambda p: _side_grasp_pose(p, back=0.16, up=0.0, height=height, held_up=held_up), duration=0.8),
-        Move("approach", lambda p: _side_grasp_pose(p, height=height, held_up=held_up), duration=1.0, tolerance=0.025),
+        Move("above pre-grasp", lambda p: _side_grasp_pose(p, back=0.16, up=0.10, height=height, held_up=held_up), duration=1.5,
+             reach_out=held_up),
+        Move("pre-grasp", lambda p: _side_grasp_pose(p, back=0.16, up=0.0, height=height, held_up=held_up), duration=0.8,
+             reach_out=held_up),
+        Move("approach", lambda p: _side_grasp_pose(p, height=height, held_up=held_up), duration=1.0, tolerance=0.025,
+             reach_out=held_up),
         Grip(True, "grasp"),
     ]
 
@@ -584,8 +628,38 @@ def _put_down_at(xy_of: Callable[[Primitive], np.ndarray], lift: float = LIFT) -
     ]
 
 
-def _hold_out(base: float = HOLD_OUT_BASE, xy=HOLD_OUT_XY, duration: float = 2.5) -> Move:
+def offer_point(prim: "Primitive") -> np.ndarray:
+    """Where to hold an object out for the person to take (world centre at grasp height): toward their
+    open hand where it was last seen held out (the object's middle at the hand, its base within
+    OFFER_BASE), else HOLD_OUT_XY at HOLD_OUT_BASE; never deeper into the HWS than the hand may go, nor
+    out of reach. Chosen once."""
+    if prim._offer is None:
+        hand = prim.partner_hand()
+        obj = prim.object
+        if hand is None:
+            c = np.array([HOLD_OUT_XY[0], HOLD_OUT_XY[1], TABLE_Z + HOLD_OUT_BASE + GRASP_HEIGHT[obj]])
+        else:
+            base = float(np.clip(float(hand[2]) - 0.5 * OBJECT_HEIGHT[obj], *OFFER_BASE))
+            c = np.array([float(hand[0]), float(hand[1]), TABLE_Z + base + GRASP_HEIGHT[obj]])
+        # out of reach: brought back toward the robot at the same height (a hand takes it where it was shown)
+        sh, reach = prim.robot.shoulder, REACH - 0.03
+        c[0] = max(c[0], TCP_MIN_X + 0.01)
+        flat = reach ** 2 - (c[2] - sh[2]) ** 2
+        off = c[:2] - sh[:2]
+        if float(np.linalg.norm(c - sh)) > reach and flat > 0:
+            c[:2] = sh[:2] + off * np.sqrt(flat) / float(np.linalg.norm(off))
+        elif float(np.linalg.norm(c - sh)) > reach:
+            c = sh + (c - sh) * reach / float(np.linalg.norm(c - sh))
+        prim._offer = c
+    return prim._offer
+
+
+def _hold_out(base: float | None = None, xy=None, duration: float = 2.5) -> Move:
+    """Hold the object in the hand out: at ``xy`` with its base ``base`` above the table, or where the
+    person will take it (`offer_point`)."""
     def goal(p):
+        if xy is None:
+            return _grasp_pose_at(p, offer_point(p), p.object)
         c = np.array([xy[0], xy[1], TABLE_Z + base + GRASP_HEIGHT[p.object]])
         return _grasp_pose_at(p, c, p.object)
     return Move("hold out", goal, duration=duration, tolerance=0.03)
@@ -876,8 +950,7 @@ class TurnAndHandOver(Primitive):
     def phases(self):
         # after the roll the gripper is upside down: keep that roll while holding out
         def hold(p):
-            c = np.array([HOLD_OUT_XY[0], HOLD_OUT_XY[1], TABLE_Z + HOLD_OUT_BASE + GRASP_HEIGHT[p.object]])
-            return _grasp_pose_at(p, c, p.object, roll=math.pi)
+            return _grasp_pose_at(p, offer_point(p), p.object, roll=math.pi)
         return _reach_and_grasp(self) + _turn_phases() + [
             Move("hold out", hold, duration=2.5, tolerance=0.03),
             *_give(self.timeout),
