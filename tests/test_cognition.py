@@ -370,3 +370,66 @@ def test_facts_against_an_actions_requirements_inhibit_it():
     row = CognitionConfig().data["couplings"]["OML->AEL"]["table"]["Reach-and-turn-glass"]
     assert row["glass_inverted_HWS"] < 0 < row["glass_inverted_RWS"]
     assert row["glass_full_RWS"] < 0    # nor fill a glass that is full
+
+
+# -- the robot's own failures -------------------------------------------------------------------
+
+HELD_OUT_GLASS = {"bottle": {"zone": "RWS", "state": "open"}, "glass": {"zone": "HWS", "state": "empty"},
+                  "hand": {"posture": "grasp_ag", "object_in_hand": "glass", "held_out": True}}
+
+
+def _run_with_failures(cog, truth, fail_action, failures, seconds, fail_after=2.0):
+    """Feed ``truth``; the robot 'executes' every decision for ``fail_after`` s, failing ``fail_action`` its
+    first ``failures`` times (a test double of the executor). Returns the decisions and what was said."""
+    t0 = t = cog.net.t
+    running, failed = None, 0
+    decisions, said = [], []
+    while t < t0 + seconds:
+        t = round(t + 0.1, 6)
+        robot = {"action": None, "status": "idle"}
+        if running is not None and t - running[1] >= fail_after:
+            ok = not (running[0] == fail_action and failed < failures)
+            failed += 0 if ok else 1
+            robot = {"action": running[0], "status": "finished" if ok else "failed"}
+            running = None
+        elif running is not None:
+            robot = {"action": running[0], "status": "running"}
+        d = cog.update(oracle_percept(t, {**truth, "robot": robot}))
+        said += [(round(u.t, 2), u.layer, u.item, u.tag) for u in d.utterances]
+        if d.new:
+            decisions.append((round(t, 2), d.action))
+            running = (d.action, t)
+    return decisions, said
+
+
+def test_a_failed_action_is_remembered_and_a_second_failure_is_a_mismatch_that_brings_the_alternative():
+    cog = Cognition()
+    decisions, said = _run_with_failures(cog, HELD_OUT_GLASS, "Receive-object", 2, 40.0)
+    actions = [a for _, a in decisions]
+    assert actions[:2] == ["Receive-object", "Receive-object"], decisions
+    # the second failure, not the first, raises the AML mismatch: it is said, and the alternative follows
+    aml = [s for s in said if s[1] == "AML"]
+    assert [s[2] for s in aml] == ["Cannot-take-it-from-the-hand"] and aml[0][3] == "error:cannot_take_it"
+    assert aml[0][0] > decisions[1][0]
+    assert actions[2] == "Take-from-table", decisions    # not Receive-object a third time: the alternative
+
+
+def test_one_failure_alone_habituates_the_action_but_raises_no_mismatch():
+    cog = Cognition()
+    decisions, said = _run_with_failures(cog, HELD_OUT_GLASS, "Receive-object", 1, 8.0)
+    assert not [s for s in said if s[1] == "AML"]
+    assert cog.net.activity("AFL", "Receive-object") > 0.5     # the failure is remembered ...
+    s_with = cog.net.input("AEL")[cog.net.field("AEL").item_indices[task.AEL_ITEMS.index("Receive-object")]]
+    cog2 = Cognition()
+    _run_with_failures(cog2, HELD_OUT_GLASS, "Receive-object", 0, 8.0)
+    s_without = cog2.net.input("AEL")[cog2.net.field("AEL").item_indices[task.AEL_ITEMS.index("Receive-object")]]
+    assert s_with < s_without - 1.0                            # ... and habituates the failed pool
+    decisions, said = _run_with_failures(cog, HELD_OUT_GLASS, "Receive-object", 0, 20.0)
+    assert [a for _, a in decisions][:1] == ["Receive-object"] and not [s for s in said if s[1] == "AML"]
+    assert cog.net.activity("AFL", "Receive-object") < 0       # tried again, it worked: the memory is cleared
+
+
+def test_without_the_failure_memory_the_failed_action_is_decided_again_and_again():
+    cog = Cognition(overrides={"couplings.AFL->AML.k": 0.0, "couplings.AFL->AEL.k": 0.0})
+    decisions, _ = _run_with_failures(cog, HELD_OUT_GLASS, "Receive-object", 5, 40.0)
+    assert [a for _, a in decisions][:3] == ["Receive-object"] * 3

@@ -10,7 +10,10 @@ Layers (fields of `assistbot.fields`, items from `assistbot.task`):
   runs, whatever the partner does: from any state a decision follows;
 - ASL: the partner's goal-directed action chain (from OL + OML + CSGL);
 - IL: the partner's intention (from ASL + CSGL + OML);
-- AML: mismatch of the intention with what is possible (IL + ASL/OML);
+- AFL: the memory of the robot's own actions that failed (the executor's reports), which keeps a
+  failed action habituated in AEL while it stands;
+- AML: mismatch of the intention with what is possible (IL + ASL/OML), and of what the robot did
+  with what came of it: a failure reported while AFL remembers one of the same action;
 - AEL: the complementary action (IL, OML, CSGL, AML, INI, URGE), one winner that
   sustains itself until the robot reports it finished or failed.
 
@@ -113,6 +116,9 @@ class Cognition:
         self._release_until = -1.0
         self._habituation: dict[str, float] = {}  # action -> time released
         self._state_out_of_view: dict[str, str | None] = {}   # object -> state remembered when it went out of view
+        self._failures: dict[str, float] = {}   # motion action -> time of its last reported failure (AFL input)
+        self._pulses: dict[str, float] = {}     # AML mismatch -> time of the last failure report pulsing it
+        self._cleared: dict[str, float] = {}    # motion action -> time its failure memory was cleared
         self._pending: list[Said] = []
         self._new = False
         self._released: str | None = None
@@ -168,6 +174,7 @@ class Cognition:
         r = percept.robot
         if r.status in ("finished", "failed") and self.decision is not None and (r.action is None or r.action == self.decision):
             self.release(r.status)
+        self._apply_failure_inputs()
 
     def release(self, why: str = "finished") -> None:
         """End the current decision: a transient inhibition of AEL and a habituation of the released action."""
@@ -176,12 +183,43 @@ class Cognition:
         rel = self.config.data["release"]
         self._release_until = self.net.t + float(rel["duration"])
         self._habituation[self.decision] = self.net.t
+        if self.decision in task.MOTION_ACTIONS:
+            # the executor's report: a failure into AFL and AML (see _apply_failure_inputs), a success
+            # clears the action's failure memory
+            if why == "failed":
+                self._failures[self.decision] = self.net.t
+                self._pulses[task.FAILURE_OF[self.decision]] = self.net.t
+            else:
+                self._failures.pop(self.decision, None)
+                self._cleared[self.decision] = self.net.t
         self.history.append((self.net.t, f"release ({why})", self.decision))
         self._released = self.decision
         self.decision = None
         self.decision_t = None
         self.error = None
         self._apply_release_inputs()
+
+    def _apply_failure_inputs(self) -> None:
+        """Inputs from the executor's failure reports: into AFL at the failed action while its report is
+        fresh (its memory forms then), into AML at the action's mismatch for a pulse; into AFL a clearing
+        input after a success, or once a failure is FORGET_AFTER old."""
+        st = self.config.data["stimulus"]
+        t = self.net.t
+        for a, t0 in list(self._failures.items()):
+            if t - t0 >= float(st["forget_after"]):
+                del self._failures[a]
+                self._cleared[a] = t
+        for a in task.MOTION_ACTIONS:
+            amp = 0.0
+            if a in self._failures and t - self._failures[a] < float(st["report_seconds"]):
+                amp = float(st["failure_report"])
+            elif a in self._cleared and t - self._cleared[a] < float(st["report_seconds"]):
+                amp = float(st["success_clears"])
+            self.net.set_stimulus("AFL", a, amp)
+        self._cleared = {a: t0 for a, t0 in self._cleared.items() if t - t0 < float(st["report_seconds"])}
+        for m in task.ACTION_FAILURES:
+            on = m in self._pulses and t - self._pulses[m] < float(st["pulse_seconds"])
+            self.net.set_stimulus("AML", m, float(st["failure_pulse"]) if on else 0.0)
 
     def _apply_release_inputs(self) -> None:
         rel = self.config.data["release"]

@@ -37,6 +37,7 @@ LAYERS: dict[str, tuple[str, ...]] = {
     "URGE": ("urge",),
     "ASL": task.ASL_ITEMS,
     "IL": task.IL_ITEMS,
+    "AFL": task.MOTION_ACTIONS,
     "AML": task.AML_ITEMS,
     "AEL": task.AEL_ITEMS,
 }
@@ -78,6 +79,10 @@ def default_config() -> dict[str, Any]:
         # action simulation, intention, monitoring: one winner each, only while driven
         "ASL": _field(0.08, -3.0, 0.8, 0.6),
         "IL": _field(0.08, -3.0, 0.8, 0.6),
+        # action failure layer: the memory of an action of the robot's that failed, formed slowly from the
+        # executor's failure report (so that it is not there yet when that report reaches AML) and kept
+        # while the situation stands; cleared when the action succeeds, forgotten after a while
+        "AFL": {**_field(2.5, -3.0, 4.0, 0.2, input_sigma=1.0), "spacing": 25},
         "AML": _field(0.05, -3.0, 0.8, 0.6),
         # action execution: competition, and the winner sustains itself until released
         "AEL": _field(0.12, -4.5, 4.0, 1.0),
@@ -102,6 +107,8 @@ def default_config() -> dict[str, Any]:
         "CSGL_present->IL": ("CSGL_present", "IL", 1.6, {i.name: i.subgoals for i in intents}),
         "OML->IL": ("OML", "IL", 1.6, {i.name: i.objects for i in intents}),
         "IL->AML": ("IL", "AML", 2.0, {e.name: e.intentions for e in errors}),
+        # a failure reported while the memory of an earlier one of the same action stands: a mismatch
+        "AFL->AML": ("AFL", "AML", 1.0, {m: {a: 2.0 for a, f in task.FAILURE_OF.items() if f == m} for m in task.ACTION_FAILURES}),
         "ASL->AML": ("ASL", "AML", 2.0, {e.name: e.chains for e in errors}),
         "OML->AML": ("OML", "AML", 2.0, {e.name: e.objects for e in errors}),
         "IL->AEL": ("IL", "AEL", 1.3, {a.name: a.intentions for a in actions}),
@@ -110,7 +117,9 @@ def default_config() -> dict[str, Any]:
                                          for a in actions}),
         "CSGL_present->AEL": ("CSGL_present", "AEL", 1.3, {a.name: a.present for a in actions}),
         "CSGL_past->AEL": ("CSGL_past", "AEL", 1.3, {a.name: a.past for a in actions}),
-        "AML->AEL": ("AML", "AEL", 1.3, {a.name: a.errors for a in actions}),
+        "AML->AEL": ("AML", "AEL", 1.3, {a.name: {**a.errors, **a.failures} for a in actions}),
+        # the failed action habituates for as long as its failure is remembered
+        "AFL->AEL": ("AFL", "AEL", 1.3, {a: {a: -1.0} for a in task.MOTION_ACTIONS}),
         "INI->AEL": ("INI", "AEL", 1.3, {a.name: {"take-initiative": a.initiative} for a in actions}),
         "AEL->URGE": ("AEL", "URGE", 1.0, {"urge": {a.name: -5.0 for a in actions}}),
         "URGE->AEL": ("URGE", "AEL", 1.3, {a.name: {"urge": 2.0 * a.initiative} for a in actions}),
@@ -128,6 +137,13 @@ def default_config() -> dict[str, Any]:
             "oml_against": -10.0,  # the same object seen elsewhere / in another state
             "ini_drive": 4.0,     # tonic drive of the initiative node
             "urge_drive": 5.0,    # tonic drive of the urge node: it crosses threshold ~9 s after an action ends
+            # the executor's report of a failed action: into AFL at the action for report_seconds (the
+            # memory forms after ~2.3 s), and into AML at the action's mismatch for pulse_seconds (below
+            # threshold alone, above it with the memory of an earlier failure of the same action)
+            "failure_report": 5.0, "report_seconds": 3.0,
+            "failure_pulse": 2.0, "pulse_seconds": 1.5,
+            "success_clears": -20.0,  # into AFL at an action that finished (for report_seconds): its failure is past
+            "forget_after": 90.0,     # s after its last failure an action's memory is let go
             # task drive of the present sub-goals: open before turn (priority), fill and hand-over only when enabled
             "present_drive": {"Open-bottle": 3.8, "Turn-glass": 3.5, "Fill-glass": 1.7, "Hand-over-full-glass": 1.7},
             "future_drive": 4.0,

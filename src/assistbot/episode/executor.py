@@ -102,7 +102,7 @@ class RobotExecutor:
 
     def _human_holds(self, obj: str | None) -> bool:
         p = self._percept
-        if p is None or not p.hand.seen:
+        if p is None or not p.hand.seen or obj is None:
             return False
         if obj == "held_out":
             return p.hand.object_in_hand is not None
@@ -170,7 +170,7 @@ class RobotExecutor:
         obj = aim
         if aim == "held_out" and self._percept is not None and self._percept.hand.seen and self._percept.hand.object_in_hand:
             obj = self._percept.hand.object_in_hand   # what the person holds out, as seen: what the hand sets out to grasp
-        self.primitive = cls(self.robot, obj, human_holds=lambda: self._human_holds(aim),
+        self.primitive = cls(self.robot, obj, human_holds=lambda: self._human_holds(aim or self.primitive.object),
                              locate=self._locate, stopper_removed=self._stopper_removed,
                              lifted=lambda: self._lifted(aim), partner_hand=self._partner_hand)
         # hidden right now (often behind the robot's own arm): start from where it was last seen;

@@ -32,10 +32,14 @@ MEET_STILL = 1.5
 MEET_MAX = 0.30
 MEET_STEP = 0.06
 MEET_TRIES = 3
+#: s the person keeps holding an object out after the robot's hand was last near it
+MEET_PATIENCE = 12.0
 #: N: an object pressing back in the person's grip this hard has met something (the robot's hand)
 FEEL_FORCE = 6.0
 #: the hand's height (world z) while it holds an object just taken from the robot, in toward the body
 TAKEN_Z = 0.90
+#: the farthest table x at which the person sets an object down under the robot's hand
+UNDER_ROBOT_X_MAX = -0.045
 #: a resting place of the hand near the body
 REST = np.array([-0.34, -0.17, 0.86])
 LIFT = 0.07                       # m lifted after a grasp
@@ -247,6 +251,8 @@ def _give_into_the_robots_hand(c, held: str, timeout: float) -> Gen:
             last, still_since = tcp, c.t
         middle = _middle(c, held)
         gap = tcp - middle
+        if np.linalg.norm(gap) < MEET_MAX:
+            t_end = max(t_end, c.t + MEET_PATIENCE)   # the robot is at it: keep holding it out
         if (still_since is not None and c.t - still_since >= MEET_STILL and np.linalg.norm(gap) < MEET_MAX
                 and tries < MEET_TRIES):
             # first into the open hand; then, as it still cannot take it, on up or aside toward its shoulder
@@ -323,7 +329,29 @@ def put_down(c, object: str | None = None, at: tuple[float, float] | None = None
     return bool(ok), f"{held} put down at ({p[0]:.2f}, {p[1]:.2f})"
 
 
-def hand_to_robot(c, object: str, grip: str | None = None, timeout: float = 20.0) -> Gen:
+def put_down_for_robot(c) -> Gen:
+    """Asked to set what the hand holds down under the robot's hand: put it down on the table below the
+    robot's hand as seen, as close to it as the arm goes."""
+    held = c.world.human_holding()
+    if held not in layout.OBJECT_HEIGHT:
+        return False, "nothing in hand to set down"
+    # the robot's open hand comes to show the place: wait until it is held out there, still
+    last, since = None, None
+    t_end = c.t + 15.0
+    while True:
+        v = c.view
+        tcp = np.array(v.hand_pos, float)
+        if not v.requests or last is None or np.linalg.norm(tcp - last) > 0.01:
+            last, since = (tcp if v.requests else None), c.t
+        elif c.t - since >= MEET_STILL:
+            break
+        if c.t >= t_end:
+            return False, "the robot showed no place"
+        yield
+    return (yield from put_down(c, held, at=(min(float(tcp[0]), UNDER_ROBOT_X_MAX), float(tcp[1]))))
+
+
+def hand_to_robot(c, object: str, grip: str | None = None, timeout: float = 40.0) -> Gen:
     """Grasp `object` (if not in hand), hold it out, and let go once the robot holds it."""
     if c.world.human_holding() != object:
         ok, why = yield from grasp(c, object, grip or c.profile.grip)
@@ -595,5 +623,5 @@ def wait(c, seconds: float) -> Gen:
 BEHAVIOURS: dict[str, Callable[..., Gen]] = {
     "grasp": grasp, "hold_out": hold_out, "put_down": put_down, "hand_to_robot": hand_to_robot,
     "take_from_robot": take_from_robot, "request": request, "point": point, "pull_stopper": pull_stopper,
-    "turn_glass": turn_glass, "drink": drink, "pour": pour, "wait": wait,
+    "turn_glass": turn_glass, "drink": drink, "pour": pour, "wait": wait, "put_down_for_robot": put_down_for_robot,
 }

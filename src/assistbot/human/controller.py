@@ -119,7 +119,9 @@ class HumanController:
                 self._pending.append(resp)
             else:   # asked for in words too: it no longer hangs on the sight
                 self._answers_sight.pop(_key(resp), None)
-        if self._pending and self.current is not None and self.current.name not in policy.UNINTERRUPTIBLE:
+        busy = self.current is not None and self.current.name in policy.UNINTERRUPTIBLE
+        goes_on = self.current is not None and any(name in policy.CONTINUES.get(self.current.name, ()) for name, _ in self._pending)
+        if self._pending and self.current is not None and (not busy or goes_on):
             # the robot asked for something: stop waiting for what we were doing, answer it
             b = self.current
             b.status, b.reason, b.t_end = "failure", f"interrupted by the robot ({tag})", self.t

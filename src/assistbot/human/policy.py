@@ -12,6 +12,8 @@ from assistbot.task.drinking import TAG_RESPONSES
 
 #: behaviours that a robot's utterance does not interrupt (the hand is busy with an object)
 UNINTERRUPTIBLE = ("pull_stopper", "drink", "put_down", "turn_glass", "pour", "take_from_robot", "hand_to_robot")
+#: ... but for a request that goes on with what the hand holds: asked to set down what it holds out
+CONTINUES = {"hand_to_robot": ("put_down_for_robot",)}
 
 
 #: the grasp site beyond this x (toward the robot) holds an object out (the hold-out point is at x = -0.05)
@@ -55,6 +57,8 @@ def response_to_tag(c, tag: str) -> list[tuple[str, dict]]:
         return [("hand_to_robot", {"object": what, "grip": "ag"})]
     if kind == "drink":
         return [("drink", {})]
+    if kind == "put_down_here" and holding in ("bottle", "glass"):
+        return [("put_down_for_robot", {})]
     if tag == "error:cannot_remove_stopper" and holding == "bottle" and c.profile.initiative:
         # the robot cannot take the bottle from a side grip: put it down, offer it from above
         return [("put_down", {"object": "bottle"}), ("hand_to_robot", {"object": "bottle", "grip": "ag"})]

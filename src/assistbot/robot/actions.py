@@ -13,6 +13,8 @@ Composite actions are one primitive whose phases chain the parts:
   Reach-full-glass-to-hand-over       HandOver (glass); Hand-over-bottle: HandOver (bottle)
   Receive-object                      Receive: grasp what the human holds out, wait until the
                                       human lets go, put it down in the RWS
+  Take-from-table                     TakeFromTable: show a spot both reach with the open hand, wait
+                                      until something is set down there, take it to the RWS
 
 The caller constructs ``cls(robot, obj, human_holds=..., locate=..., stopper_removed=...)``
 (see `primitives.Primitive`); every primitive accepts all three callbacks. From perception,
@@ -47,6 +49,7 @@ ACTION_PRIMITIVES: dict[str, tuple[type[P.Primitive], str | None] | None] = {
     "Reach-full-glass-to-hand-over": (P.HandOver, "glass"),
     "Hand-over-bottle": (P.HandOver, "bottle"),
     "Receive-object": (P.Receive, "held_out"),
+    "Take-from-table": (P.TakeFromTable, None),
 }
 
 #: actions whose primitive does not achieve the action physically yet (action -> reason): none left.

@@ -61,3 +61,25 @@ def put_down_spot(shoulder: np.ndarray, reach: float, handover_xy, standing: Ite
         return c[int(np.argmax(clear))].copy()
     free = c[clear >= 0]
     return free[int(np.argmin(np.linalg.norm(free - np.asarray(PREFERRED), axis=1)))].copy()
+
+
+#: the table x of a spot the robot shares with the person: just on the person's side of the middle line,
+#: where both can set an object down and take it from the table
+SHARED_X = -0.045
+
+
+def shared_spot(shoulder: np.ndarray, reach: float, handover_xy, standing: Iterable, grasp_height: float) -> np.ndarray:
+    """A spot on the table at SHARED_X whose grasp point at ``grasp_height`` (the lowest grasp made there) lies
+    within ``reach`` of the shoulder, nearest the hand-over place's y and OBJECT_CLEAR from the objects
+    standing near it (if none is that clear, the reachable one nearest the hand-over place)."""
+    ys = np.arange(SPOT_Y[0], SPOT_Y[1] + 1e-9, SPOT_STEP / 2)
+    c = np.column_stack([np.full(len(ys), SHARED_X), ys])
+    grasp = np.column_stack([c, np.full(len(c), layout.TABLE_Z + grasp_height)])
+    within = np.linalg.norm(grasp - np.asarray(shoulder, float), axis=1) <= reach
+    ok = within.copy()
+    for o in standing:
+        ok &= np.linalg.norm(c - np.asarray(o, float)[:2], axis=1) >= OBJECT_CLEAR
+    if not ok.any():
+        ok = within if within.any() else np.ones(len(c), bool)
+    free = c[ok]
+    return free[int(np.argmin(np.abs(free[:, 1] - float(handover_xy[1]))))].copy()

@@ -44,7 +44,7 @@ import numpy as np
 
 from assistbot.robot import poses
 from assistbot.robot.controller import REACH, TCP_MIN_X, RobotController
-from assistbot.robot.placement import put_down_spot
+from assistbot.robot.placement import put_down_spot, shared_spot
 from assistbot.robot.target_field import TargetField
 from assistbot.task import OBJECTS
 from assistbot.world.layout import OBJECT_HEIGHT, TABLE_Z
@@ -68,8 +68,13 @@ class Progress:
 
 
 class Phase:
+    """One step of a primitive. ``fallback(prim)``, when a phase has one, gives the phases that end the
+    primitive safely after that phase failed (setting down what the hand holds, say); the primitive then
+    runs them and still reports the failure."""
+
     name = "phase"
     timeout = 5.0
+    fallback: Callable[["Primitive"], list["Phase"]] | None = None
 
     def start(self, prim: "Primitive") -> None:
         pass
@@ -323,6 +328,7 @@ class Primitive:
         self.lifted = lifted or (lambda: None)
         self.partner_hand = partner_hand or (lambda: None)
         self._offer: np.ndarray | None = None
+        self._failure: Progress | None = None    # a failure being ended safely (Phase.fallback)
         self._lift: float | None = None          # the target's base height above the table, smoothed
         self._lift_frozen = False                # ... and kept once the object is in the hand
         self.carrying = False
@@ -383,6 +389,7 @@ class Primitive:
         self.carrying = False
         self._phases = self.phases()
         self._k, self._t, self._t_total = 0, 0.0, 0.0
+        self._failure = None
         self.progress = Progress(Status.RUNNING, self._phases[0].name)
         self._phases[0].start(self)
 
@@ -401,12 +408,19 @@ class Primitive:
         status, reason = phase.tick(self, dt, self._t)
         if status is Status.RUNNING and self.carrying and self.object and self.robot.gripper.holding() != self.object:
             status, reason = Status.FAILED, f"{phase.name}: {self.object} slipped out of the hand"
+        if status is Status.FAILED and phase.fallback is not None and self._failure is None:
+            # end safely first, then report
+            self._failure = Progress(Status.FAILED, phase.name, reason, self._t_total)
+            self._phases = self._phases[:self._k + 1] + phase.fallback(self)
+            status = Status.SUCCEEDED
         if status is Status.FAILED:
             self.progress = Progress(Status.FAILED, phase.name, reason, self._t_total)
         elif status is Status.SUCCEEDED:
             self._after(phase)
             self._k += 1
-            if self._k >= len(self._phases):
+            if self._k >= len(self._phases) and self._failure is not None:
+                self.progress = Progress(Status.FAILED, self._failure.phase, self._failure.reason, self._t_total)
+            elif self._k >= len(self._phases):
                 self.progress = Progress(Status.SUCCEEDED, phase.name, "", self._t_total)
             else:
                 self._t = 0.0
@@ -430,6 +444,9 @@ GRASP_HEIGHT = {"glass": 0.05, "bottle": 0.08, "held_out": 0.06}
 RADIUS = {"glass": 0.040, "bottle": 0.035, "held_out": 0.0375}
 #: how far (m) beyond REACH a grasp point may lie and still be grasped, short of the hand's middle
 REACH_SLACK = 0.025
+#: the farthest a spot shared with the person may lie (m from the shoulder, at grasp height): just beyond
+#: REACH, within the slack, since the person's arm stops at the middle line
+SHARED_REACH = REACH + REACH_SLACK - 0.012
 TCP_CYLINDER_RADIUS = 0.035  # the TCP is the centre of a 70 mm cylinder touching the palm
 LIFT = 0.12
 #: the bottle's mouth above its grasp point (m): 0.194 - 0.08
@@ -669,10 +686,23 @@ def _hold_out(base: float | None = None, xy=None, duration: float = 2.5) -> Move
 OFFER_PHASE = "wait for the human to take it"
 
 
+def _set_down_for_the_person(p: Primitive) -> list[Phase]:
+    """Not taken: set the object down on the table where the person can take it (`shared_spot`), let go, withdraw."""
+    def spot(q):
+        if getattr(q, "_shared", None) is None:
+            standing = [xy for xy in (q.locate(n) for n in OBJECTS if n != q.object) if xy is not None]
+            q._shared = shared_spot(q.robot.shoulder, SHARED_REACH, HOLD_OUT_XY, standing, min(GRASP_HEIGHT[o] for o in OBJECTS))
+        return q._shared
+    return _put_down_at(spot) + _retract()
+
+
 def _give(timeout: float) -> list[Phase]:
-    """The object is held out: wait until the human holds it, let go, withdraw."""
+    """The object is held out: wait until the human holds it, let go, withdraw. Not taken in time, it is set
+    down on the table within the person's reach before the hand-over is reported failed."""
+    wait = WaitForTake(OFFER_PHASE, timeout, "the human did not take it")
+    wait.fallback = _set_down_for_the_person
     return [
-        WaitForTake(OFFER_PHASE, timeout, "the human did not take it"),
+        wait,
         Wait("feel the pull", 0.3),
         _Open("let go"), _Carry(False),
         BackOff("back off", distance=0.16, up=0.0, duration=1.2),
@@ -984,3 +1014,68 @@ class Receive(Primitive):
             *_put_down_at(lambda p: p.free_spot()),
             *_retract(),
         ]
+
+
+class TakeFromTable(Primitive):
+    """The other way to take what the person cannot hand over: show, with the open hand held above it, a
+    spot on the table that both reach (`placement.shared_spot`); wait until an object is seen set down
+    there and let go of; take it from the table, put it down at a free spot in the RWS, retract.
+
+    ``obj`` is None: which object it is follows from what perception sees set down under the hand."""
+
+    name = "take_from_table"
+    #: how high (m above the table) the open hand shows the spot: above the bottle with its stopper
+    SHOW_HEIGHT = 0.30
+    #: an object seen standing this close (m) to the spot has been set down there
+    PLACED_NEAR = 0.09
+
+    def __init__(self, robot, obj=None, timeout: float = 25.0, **kw):
+        super().__init__(robot, obj, **kw)
+        self.timeout = timeout
+        self.spot: np.ndarray | None = None
+        self._home_xy: np.ndarray | None = None
+
+    def start(self, target_xy=None) -> None:
+        standing = [xy for xy in (self.locate(n) for n in OBJECTS) if xy is not None and xy[0] > -0.2]
+        self.spot = shared_spot(self.robot.shoulder, SHARED_REACH, HOLD_OUT_XY, standing, min(GRASP_HEIGHT[o] for o in OBJECTS))
+        super().start(tuple(self.spot))
+
+    def _placed(self) -> bool:
+        for name in OBJECTS:
+            xy = self.locate(name)
+            if xy is not None and np.hypot(xy[0] - self.spot[0], xy[1] - self.spot[1]) < self.PLACED_NEAR:
+                self.object = name
+                return not self.human_holds()
+        return False
+
+    def tick(self, dt, target_xy=None):
+        if self.object is not None and target_xy is None:
+            target_xy = self.locate(self.object)
+        return super().tick(dt, target_xy)
+
+    def phases(self):
+        def show(p, back=0.0, up=None):
+            c = np.array([p.spot[0], p.spot[1], TABLE_Z + (self.SHOW_HEIGHT if up is None else up)])
+            return _grasp_pose_at(p, c, "glass", back=back)
+
+        def grasp_at(p, back=0.0, up=0.0):
+            return _side_grasp_pose(p, back=back, up=up)
+        return [
+            _Open("open"), Rise("rise", 1.0),
+            Move("ready", lambda p: poses.pose(mink.SO3.identity(), READY_POSE_POS), duration=1.2, tolerance=0.04),
+            Move("show the spot", show, duration=1.8, tolerance=0.04),
+            WaitFor("wait for it to be set down", lambda p: p._placed(), self.timeout, "nothing was set down"),
+            Move("back from above", lambda p: show(p, back=0.16), duration=1.0, tolerance=0.04),
+            Move("pre-grasp", lambda p: grasp_at(p, back=0.16), duration=1.2),
+            Move("approach", lambda p: grasp_at(p), duration=1.0, tolerance=0.025),
+            Grip(True, "grasp"),
+            Move("lift", lambda p: _side_grasp_pose(p, up=LIFT), duration=1.2),
+            *_put_down_at(lambda p: p._home()),
+            *_retract(),
+        ]
+
+    def _home(self) -> np.ndarray:
+        """Where the object taken goes: a free spot in the RWS (chosen once)."""
+        if self._home_xy is None:
+            self._home_xy = free_rws_spot(self)
+        return self._home_xy

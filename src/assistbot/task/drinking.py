@@ -222,7 +222,12 @@ ERRORS: tuple[Error, ...] = (
     Error("Pour-into-inverted-glass", {"Pour": 1.0}, {}, _both("glass_inverted", 1.2)),
     Error("Drink-from-empty-glass", {"Drink": 1.0}, {}, _both("glass_empty", 1.2)),
 )
-AML_ITEMS: tuple[str, ...] = tuple(e.name for e in ERRORS)
+#: Mismatches between what the robot did and what came of it: an action of the robot's that failed again
+#: while the memory of its failure (the AFL layer) still stood. action -> the AML item it raises.
+#: Failing to take what the person holds out is its own mismatch (it has an alternative: Take-from-table);
+#: every other repeated failure is one mismatch, said as such, the action kept inhibited.
+ACTION_FAILURES: tuple[str, ...] = ("Cannot-take-it-from-the-hand", "Keeps-failing")
+AML_ITEMS: tuple[str, ...] = tuple(e.name for e in ERRORS) + ACTION_FAILURES
 
 # ---------------------------------------------------------------------------------------------
 # Robot actions (AEL)
@@ -238,7 +243,8 @@ class RobotAction:
     module runs ("speak" = speech only, "none" = nothing).
     Evidence for selecting it (AEL inputs), weights: ``intentions`` (IL),
     ``objects`` (OML), ``present``/``past`` (CSGL), ``errors`` (AML),
-    ``initiative`` (the robot's own initiative when the partner is passive).
+    ``initiative`` (the robot's own initiative when the partner is passive), ``failures`` (AML
+    mismatches of the robot's own repeated failures, `ACTION_FAILURES`).
     ``requires``/``effects``/``response``: the world model used by the coverage
     check (world-state variable -> allowed values / new value; the partner's
     response the action asks for, which a passive partner gives too).
@@ -252,6 +258,7 @@ class RobotAction:
     present: dict[str, float] = field(default_factory=dict)
     past: dict[str, float] = field(default_factory=dict)
     errors: dict[str, float] = field(default_factory=dict)
+    failures: dict[str, float] = field(default_factory=dict)
     initiative: float = 0.0
     requires: dict[str, tuple] = field(default_factory=dict)
     effects: dict[str, object] = field(default_factory=dict)
@@ -292,14 +299,14 @@ ROBOT_ACTIONS: tuple[RobotAction, ...] = (
                 requires={"glass_state": ("full",), "glass_zone": ("RWS",)},
                 effects={"glass_zone": "HWS"}, response="take_object"),
     RobotAction("Request-glass", "glass", "hold_out_open_hand",
-                intentions={"Give-glass": 0.3},
+                intentions={"Give-glass": -1.0},  # not asked for while it is being given
                 objects={"glass_empty_HWS": 1.0, "glass_inverted_HWS": 0.8, "bottle_open_RWS": 0.4,
                          "glass_empty_RWS": -1.0, "glass_inverted_RWS": -1.0, "glass_full_RWS": -1.0},
                 present={"Fill-glass": 1.0, "Turn-glass": 1.0}, initiative=1.0,
                 requires={"glass_zone": ("HWS",), "glass_state": ("inverted", "empty")},
                 effects={"glass_zone": "RWS"}, response="give_object"),
     RobotAction("Request-bottle", "bottle", "hold_out_open_hand",
-                intentions={"Give-bottle": 1.0},
+                intentions={"Give-bottle": -1.0},  # not asked for while it is being given
                 objects={"bottle_closed_HWS": 1.0, "bottle_open_HWS": 1.0, "glass_empty_RWS": 0.3},
                 present={"Open-bottle": 1.0, "Fill-glass": 0.8}, initiative=1.0,
                 requires={"bottle_zone": ("HWS",)}, effects={"bottle_zone": "RWS"}, response="give_object"),
@@ -311,10 +318,13 @@ ROBOT_ACTIONS: tuple[RobotAction, ...] = (
                 present={"Fill-glass": 0.6}, initiative=0.5,
                 requires={"bottle_zone": ("RWS",)}, effects={"bottle_zone": "HWS"}, response="take_object"),
     RobotAction("Receive-object", "held_out", "receive_object",
-                intentions={"Give-glass": 2.8, "Give-bottle": 2.8},
+                intentions={"Give-glass": 2.8, "Give-bottle": 2.8}, failures={"Cannot-take-it-from-the-hand": -4.0},
                 objects={"bottle_open_HWS": 0.6, "bottle_closed_HWS": 0.6, "glass_inverted_HWS": 0.6, "glass_empty_HWS": 0.6,
                          "glass_full_HWS": 0.6},
-                requires={"bottle_zone": ("held_out",)}, effects={"bottle_zone": "RWS"}),
+                initiative=0.5, requires={"bottle_zone": ("held_out",)}, effects={"bottle_zone": "RWS"}),
+    # the other way to get what the person cannot hand over: set down within reach, it is taken from the table
+    RobotAction("Take-from-table", None, "take_from_table",
+                failures={"Cannot-take-it-from-the-hand": 4.0}),
     RobotAction("Suggest-drink", "glass", "speak",
                 intentions={"Drink": -2.0},
                 objects={"glass_full_HWS": 1.5}, past={"Hand-over-full-glass": 1.0}, initiative=1.0,
@@ -344,7 +354,14 @@ def facts_against(action: RobotAction) -> tuple[str, ...]:
             continue
         out += [oml_item(obj, st, z) for st in states for z in ZONES if st not in ok_states or z not in ok_zones]
     return tuple(out)
+
+
 ROBOT_ACTION_BY_NAME: dict[str, RobotAction] = {a.name: a for a in ROBOT_ACTIONS}
+#: the actions that move the robot and so can fail physically: the items of the action failure layer (AFL)
+MOTION_ACTIONS: tuple[str, ...] = tuple(a.name for a in ROBOT_ACTIONS if a.motion not in ("speak", "none"))
+#: motion action -> the AML mismatch (`ACTION_FAILURES`) its repeated failure raises
+FAILURE_OF: dict[str, str] = {a: ("Cannot-take-it-from-the-hand" if a == "Receive-object" else "Keeps-failing")
+                              for a in MOTION_ACTIONS}
 
 #: what the human can do on his own initiative (an active partner only), for the coverage check.
 #: The human acts in HWS only and cannot open the bottle alone.
@@ -359,7 +376,7 @@ HUMAN_INITIATIVES: tuple[dict, ...] = (
 )
 #: how a partner answers each request the robot makes (tag of the robot's utterance -> the response):
 #: a passive partner gives them too; it only never starts anything.
-PARTNER_RESPONSES: tuple[str, ...] = ("remove_stopper", "take_object", "give_object", "drink")
+PARTNER_RESPONSES: tuple[str, ...] = ("remove_stopper", "take_object", "give_object", "drink", "put_down_here")
 
 # ---------------------------------------------------------------------------------------------
 # Utterances: one per pool of ASL, IL, AML and AEL (the robot reasons aloud)
@@ -409,6 +426,8 @@ UTTERANCES: dict[str, dict[str, Utterance]] = {
         Utterance("AML", "Pour-from-closed-bottle", "The bottle is still closed: nothing will pour.", "error:pour_closed_bottle"),
         Utterance("AML", "Pour-into-inverted-glass", "The glass is upside down: it cannot be filled.", "error:pour_inverted_glass"),
         Utterance("AML", "Drink-from-empty-glass", "The glass is empty.", "error:drink_empty_glass"),
+        Utterance("AML", "Cannot-take-it-from-the-hand", "I cannot take it from your hand.", "error:cannot_take_it"),
+        Utterance("AML", "Keeps-failing", "That did not work twice; I will try something else.", "error:keeps_failing"),
     )},
     "AEL": {u.item: u for u in (
         # Communicate-Error speaks the message of the winning AML error; this text is its preface
@@ -422,6 +441,8 @@ UTTERANCES: dict[str, dict[str, Utterance]] = {
         Utterance("AEL", "Request-bottle", "Please give me the bottle.", "request:bottle"),
         Utterance("AEL", "Hand-over-bottle", "Here is the bottle.", "offer:bottle"),
         Utterance("AEL", "Receive-object", "I will take it.", "accept:object"),
+        Utterance("AEL", "Take-from-table", "Please put it down on the table under my hand; I will take it from there.",
+                  "request:put_down_here"),
         Utterance("AEL", "Suggest-drink", "Your glass is full: you can drink now.", "suggest:drink"),
         Utterance("AEL", "Wait", "I will wait.", "inform:wait"),
     )},
@@ -435,4 +456,5 @@ TAG_RESPONSES: dict[str, str] = {
     "request:glass": "give_object",
     "request:bottle": "give_object",
     "suggest:drink": "drink",
+    "request:put_down_here": "put_down_here",
 }
