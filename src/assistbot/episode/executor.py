@@ -109,8 +109,8 @@ class RobotExecutor:
         return p.hand.object_in_hand == obj
 
     def _lifted(self, obj: str | None) -> float | None:
-        """Height (m above the table) of the base of ``obj`` held up by the person, as seen now: the
-        object's own triangulated base, else from the hand that holds it (at the object's top for a grip
+        """Height (m above the table) of the base of ``obj`` held up by the person, as seen now: from the
+        object's own triangulated base and from the hand that holds it (at the object's top for a grip
         from above, at its middle for one from the side); None when neither is seen."""
         p = self._percept
         if p is None or obj is None:
@@ -118,12 +118,15 @@ class RobotExecutor:
         h = p.hand
         name = h.object_in_hand if obj == "held_out" else obj
         o = p.objects.get(name) if name else None
+        seen = []
         if o is not None and o.seen and o.position[2] > STANDING_Z:
-            return float(o.position[2])
+            seen.append(float(o.position[2]))
         if h.seen and name is not None and h.object_in_hand == name:
             height = OBJECT_HEIGHT[name]
-            return float(h.position[2]) - (height if h.posture == "grasp_ag" else height / 2)
-        return None
+            seen.append(float(h.position[2]) - (height if h.posture == "grasp_ag" else height / 2))
+        # the higher of the two: a hand over the top hides part of the object and vision then places it
+        # low, and a grasp too low cannot set the object down again (the palm meets the table first)
+        return max(seen) if seen else None
 
     def _partner_hand(self) -> tuple[float, float, float] | None:
         """Where the partner's open hand was last seen held out (table x, y, z), within OPEN_HAND_MEMORY s."""
@@ -209,6 +212,11 @@ class RobotExecutor:
             return
         self.robot.ik.set_obstacles(self._obstacles())
         prog = self.primitive.tick(dt, self._target_xy(self._aim))
+        if self.primitive.released is not None:
+            # where it set the object down, the robot knows without looking (its arm may hide it now)
+            name, xy = self.primitive.released
+            self._last_seen[name] = self._standing[name] = xy
+            self.primitive.released = None
         if prog.status is Status.SUCCEEDED:
             self._end(t, "finished", "")
         elif prog.status is Status.FAILED:

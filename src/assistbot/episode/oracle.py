@@ -12,10 +12,9 @@ import numpy as np
 from assistbot.cognition.oracle import ORACLE_LABEL, oracle_percept
 from assistbot.cognition.percept import Percept
 from assistbot.world import TABLE_Z
+from assistbot.world.layout import HANDOVER_ZONE_X
 from assistbot.world.state import standing_end
 
-# A hand this close to the middle line (x = 0) with an object or an open palm is "held out".
-HELD_OUT_X = -0.16
 
 __all__ = ["ORACLE_LABEL", "OraclePerception"]
 
@@ -47,7 +46,7 @@ def _hand_truth(world, human) -> dict:
     elif behaviour in ("grasp", "hand_to_robot", "take_from_robot") and holding is None and args.get("object"):
         out["posture"] = "reach"
         out["directed_at"] = args.get("object")
-    out["held_out"] = bool(xyz[0] > HELD_OUT_X and (holding is not None or out["posture"] == "open_palm_request"))
+    out["held_out"] = bool(xyz[0] > HANDOVER_ZONE_X[0] and (holding is not None or out["posture"] == "open_palm_request"))
     return out
 
 

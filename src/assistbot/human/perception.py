@@ -15,10 +15,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-#: the robot's hand counts as "held out toward the human" when its tool point is within
-#: this x (world, m) of the middle line, on either side: at the hand-over zone, not while
-#: it works at the robot's own places (x >= 0.10)
-HELD_OUT_X = 0.08
+from assistbot.world.layout import HANDOVER_ZONE_X
+
 OPEN_FINGERS = 0.3   # rad, finger flexion below which the robot's hand looks open
 SHOULDER_BODY = "robot_link1"   # the robot's shoulder: where its arm comes from, as a person sees it
 
@@ -44,6 +42,12 @@ class RobotView:
         return self.held_out and self.open_hand and self.holds is None
 
 
+def held_out_x(x: float) -> bool:
+    """The robot's hand at table x is held out toward the person: in the hand-over zone, not at work at
+    the robot's own places."""
+    return bool(HANDOVER_ZONE_X[0] < x < HANDOVER_ZONE_X[1])
+
+
 _INDEX: "weakref.WeakKeyDictionary[object, tuple[int, np.ndarray]]" = weakref.WeakKeyDictionary()
 
 
@@ -63,6 +67,6 @@ def see_robot(world) -> RobotView:
     d = world.data
     tcp = d.site_xpos[tcp_id]
     holds = world.robot_holding()
-    return RobotView(holds, (float(tcp[0]), float(tcp[1]), float(tcp[2])), bool(abs(tcp[0]) < HELD_OUT_X),
+    return RobotView(holds, (float(tcp[0]), float(tcp[1]), float(tcp[2])), held_out_x(tcp[0]),
                      bool(holds is None and float(d.qpos[finger_qadr].max()) < OPEN_FINGERS),
                      tuple(float(v) for v in d.xpos[shoulder_id]))

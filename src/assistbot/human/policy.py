@@ -9,6 +9,7 @@ already did; with a seeded chance it first grasps with the wrong grip.
 from __future__ import annotations
 
 from assistbot.task.drinking import TAG_RESPONSES
+from assistbot.world.layout import HANDOVER_ZONE_X
 
 #: behaviours that a robot's utterance does not interrupt (the hand is busy with an object)
 UNINTERRUPTIBLE = ("pull_stopper", "drink", "put_down", "turn_glass", "pour", "take_from_robot", "hand_to_robot")
@@ -16,8 +17,6 @@ UNINTERRUPTIBLE = ("pull_stopper", "drink", "put_down", "turn_glass", "pour", "t
 CONTINUES = {"hand_to_robot": ("put_down_for_robot",)}
 
 
-#: the grasp site beyond this x (toward the robot) holds an object out (the hold-out point is at x = -0.05)
-HELD_OUT_X = -0.20
 
 
 def _scene(c) -> dict:
@@ -41,7 +40,7 @@ def response_to_tag(c, tag: str) -> list[tuple[str, dict]]:
     if kind == "remove_stopper":
         out = []
         handing_over = c.current is not None and c.current.name == "hand_to_robot"
-        held_out = holding == "bottle" and c.world.site_pos("human_r_grasp")[0] > HELD_OUT_X
+        held_out = holding == "bottle" and c.world.site_pos("human_r_grasp")[0] > HANDOVER_ZONE_X[0]
         if held_out and not handing_over:
             # the robot is coming for the bottle he holds out: he keeps it there until the robot has it
             out.append(("hand_to_robot", {"object": "bottle"}))

@@ -19,7 +19,7 @@ import mujoco
 import numpy as np
 
 from assistbot.human.arm import min_jerk
-from assistbot.human.perception import HELD_OUT_X, RobotView
+from assistbot.human.perception import RobotView, held_out_x
 from assistbot.world import Arrangement, World, layout
 
 HOLDABLE = ("bottle", "glass")
@@ -80,7 +80,7 @@ class StandIn:
         """What the human sees of the stand-in (signature of `perception.see_robot`)."""
         p = self.pos
         held = self.holds()
-        return RobotView(held, (float(p[0]), float(p[1]), float(p[2])), bool(abs(p[0]) < HELD_OUT_X),
+        return RobotView(held, (float(p[0]), float(p[1]), float(p[2])), held_out_x(p[0]),
                          bool(held is None and self.open))
 
     # ------------------------------------------------------------------ commands

@@ -44,10 +44,10 @@ import numpy as np
 
 from assistbot.robot import poses
 from assistbot.robot.controller import REACH, TCP_MIN_X, RobotController
-from assistbot.robot.placement import put_down_spot, shared_spot
+from assistbot.robot.placement import put_down_spot, segment_distance, shared_spot
 from assistbot.robot.target_field import TargetField
 from assistbot.task import OBJECTS
-from assistbot.world.layout import OBJECT_HEIGHT, TABLE_Z
+from assistbot.world.layout import OBJECT_HEIGHT, OBJECT_RADIUS, STOPPER_HEIGHT, TABLE_Z
 
 UNREACHABLE_PATIENCE = 0.3  # s in all that a Move's target may be out of reach before the move fails (3 perception ticks)
 REACH_WAIT = 12.0           # s a reaching-out move waits for its goal to come within reach
@@ -173,6 +173,8 @@ class Grip(Phase):
     def start(self, prim):
         g = prim.robot.gripper
         g.close() if self.close else g.open()
+        if not self.close and prim.carrying:
+            _note_set_down(prim)
         if not self.close:
             prim.carrying = False
         self.since: float | None = None
@@ -329,6 +331,7 @@ class Primitive:
         self.partner_hand = partner_hand or (lambda: None)
         self._offer: np.ndarray | None = None
         self._failure: Progress | None = None    # a failure being ended safely (Phase.fallback)
+        self.released: tuple[str, tuple[float, float]] | None = None  # the object let go of last, and where
         self._lift: float | None = None          # the target's base height above the table, smoothed
         self._lift_frozen = False                # ... and kept once the object is in the hand
         self.carrying = False
@@ -441,7 +444,8 @@ class Primitive:
 # ---------------------------------------------------------------------------
 # geometry of the objects (body origin at the bottom centre)
 GRASP_HEIGHT = {"glass": 0.05, "bottle": 0.08, "held_out": 0.06}
-RADIUS = {"glass": 0.040, "bottle": 0.035, "held_out": 0.0375}
+#: the objects' radii (the MJCF's, through world.layout); "held_out": either, unseen which
+RADIUS = {**{o: OBJECT_RADIUS[o] for o in ("glass", "bottle")}, "held_out": (OBJECT_RADIUS["glass"] + OBJECT_RADIUS["bottle"]) / 2}
 #: how far (m) beyond REACH a grasp point may lie and still be grasped, short of the hand's middle
 REACH_SLACK = 0.025
 #: the farthest a spot shared with the person may lie (m from the shoulder, at grasp height): just beyond
@@ -449,19 +453,26 @@ REACH_SLACK = 0.025
 SHARED_REACH = REACH + REACH_SLACK - 0.012
 TCP_CYLINDER_RADIUS = 0.035  # the TCP is the centre of a 70 mm cylinder touching the palm
 LIFT = 0.12
-#: the bottle's mouth above its grasp point (m): 0.194 - 0.08
-BOTTLE_MOUTH_ABOVE_GRASP = 0.114
-GLASS_HEIGHT = 0.10
+#: the bottle's mouth above its grasp point (m)
+BOTTLE_MOUTH_ABOVE_GRASP = OBJECT_HEIGHT["bottle"] - GRASP_HEIGHT["bottle"]
 #: where an object is held out for the human to take: its centre (table x, y) and its base height above the table
 HOLD_OUT_XY = (-0.04, -0.04)
 HOLD_OUT_BASE = 0.11
 #: how low and how high an offered object's base is held above the table (m), whatever the hand it is
 #: offered to: a hand shown higher takes it from the side no higher than a seated arm reaches well
 OFFER_BASE = (0.05, 0.12)
+#: m above the table that a put-down goes to by position before lowering the rest of the way by feel:
+#: an object is not always held at the height assumed (one taken from the person's hand)
+SET_DOWN_ABOVE = 0.025
+#: m by which what the robot carries passes over the objects standing in its way
+CARRY_CLEARANCE = 0.03
 #: the height (m above the table) assumed for the base of an object held up by the person until it is seen
 LIFT_GUESS = 0.10
 #: time constant (s) over which the perceived height of a held-up object is followed
 LIFT_TAU = 0.2
+#: m higher than the usual grasp height that an object held up by the person is grasped: its height is
+#: seen less well there, and one grasped too low cannot be set down (the palm meets the table first)
+HELD_GRASP_MARGIN = 0.015
 
 
 def _point(prim: Primitive, z: float) -> np.ndarray:
@@ -489,7 +500,7 @@ def _side_grasp_pose(prim: Primitive, back: float = 0.0, up: float = 0.0, roll: 
     person at the height perception gives (`Primitive.base_z`)."""
     obj = prim.object or "glass"
     x, y = prim.xy()
-    base_z = prim.base_z() if held_up else TABLE_Z
+    base_z = prim.base_z() + HELD_GRASP_MARGIN if held_up else TABLE_Z
     c = np.array([x, y, base_z + (height if height is not None else GRASP_HEIGHT.get(obj, 0.06)) + up])
     return _grasp_pose_at(prim, c, obj, back, roll)
 
@@ -522,6 +533,17 @@ def _reach_and_grasp(prim: Primitive, height: float | None = None, held_up: bool
              reach_out=held_up),
         Grip(True, "grasp"),
     ]
+
+
+def _note_set_down(prim: "Primitive") -> None:
+    """Letting go of an object set down on the table: where it stands, as the robot's own body knows it
+    (the axis of a side grasp lies beyond the TCP along the approach), for when its arm hides it."""
+    pose = prim.robot.tcp_pose()
+    obj = prim.object
+    if obj not in RADIUS or obj == "held_out" or pose.translation()[2] > TABLE_Z + GRASP_HEIGHT[obj] + 0.04:
+        return      # let go of in the air: into the person's hand
+    c = pose.translation() + poses.approach_axis(pose.rotation()) * (RADIUS[obj] - TCP_CYLINDER_RADIUS)
+    prim.released = (obj, (float(c[0]), float(c[1])))
 
 
 class _Open(Grip):
@@ -638,11 +660,70 @@ def _put_down_at(xy_of: Callable[[Primitive], np.ndarray], lift: float = LIFT) -
         c = np.array([x, y, TABLE_Z + GRASP_HEIGHT[p.object] + up])
         return _grasp_pose_at(p, c, p.object)
     return [
+        CarryOver(lambda p: at(p, lift)),
         Move("carry", lambda p: at(p, lift), duration=1.8),
-        Move("put down", lambda p: at(p, 0.006), duration=1.2, tolerance=0.025),
+        # down to just above where the object would touch if held as assumed; the rest by feel
+        Move("put down", lambda p: at(p, SET_DOWN_ABOVE), duration=1.2, tolerance=0.025),
+        LowerUntilSupported(),
         _Open("release"), _Carry(False),
         BackOff(),
     ]
+
+
+class LowerUntilSupported(Phase):
+    """Lower the held object until the table is felt to carry it: the wrist force moves SUPPORT_N away from
+    what it was once the hand had come to rest (the object's weight leaves the hand), or the hand can go no
+    lower (the arm keeps the hand off the table): the grip is then eased so that the object slides down
+    between the fingers onto the table. Where the object was grasped lower or higher than assumed (a
+    held-out object placed a few cm off by vision), the put-down still ends with it standing on the table."""
+
+    name = "lower until supported"
+    SUPPORT_N = 0.8
+    REST_SECONDS = 0.3    # held still first: the force at rest is read after the last move's jolt
+    FORCE_TAU = 0.1       # s: the force is low-passed, the arm's own servo jitter (~0.7 N) is not the table
+    FELT_TICKS = 3        # in a row
+    SPEED = 0.03          # m/s
+    MAX_DROP = 0.07       # m below where the put-down ended
+    STALL_SECONDS = 0.3   # no progress this long: the hand is as low as it goes
+    LOOSEN = 0.35         # how far the grip opens to let the object slide down (fraction of fully open)
+    SLIDE_SECONDS = 0.8
+
+    def start(self, prim):
+        self.origin = prim.robot.commanded_tcp_pose()
+        self.f0: np.ndarray | None = None
+        self.force = prim.robot.gripper.wrist_force()
+        self.felt = 0
+        self.best_z, self.since = float(prim.robot.tcp_pose().translation()[2]), self.REST_SECONDS
+        self.loosened: float | None = None
+        self.timeout = self.REST_SECONDS + self.MAX_DROP / self.SPEED + 1.0 + self.SLIDE_SECONDS
+
+    def tick(self, prim, dt, t):
+        self.force += (prim.robot.gripper.wrist_force() - self.force) * min(1.0, dt / self.FORCE_TAU)
+        if t < self.REST_SECONDS:
+            prim.robot.hold()
+            return Status.RUNNING, ""
+        if self.f0 is None:
+            self.f0 = self.force.copy()
+        self.felt = self.felt + 1 if np.linalg.norm(self.force - self.f0) > self.SUPPORT_N else 0
+        if self.felt >= self.FELT_TICKS:
+            prim.robot.hold()
+            return Status.SUCCEEDED, ""
+        z = float(prim.robot.tcp_pose().translation()[2])
+        if z < self.best_z - 0.002:
+            self.best_z, self.since = z, t
+        if self.loosened is not None:
+            # the grip eased: the object slides down between the fingers onto the table
+            prim.robot.hold()
+            return (Status.SUCCEEDED, "") if t - self.loosened >= self.SLIDE_SECONDS else (Status.RUNNING, "")
+        if t - self.since > self.STALL_SECONDS or t >= self.timeout:
+            # as low as the hand goes and not yet on the table (grasped lower than assumed): ease the grip
+            # rather than drop it from there
+            prim.robot.gripper.open(self.LOOSEN)
+            self.loosened = t
+            return Status.RUNNING, ""
+        pos = self.origin.translation() - [0.0, 0.0, min(self.MAX_DROP, self.SPEED * (t - self.REST_SECONDS))]
+        prim.robot.move_toward(poses.pose(self.origin.rotation(), pos), dt)
+        return Status.RUNNING, ""
 
 
 def offer_point(prim: "Primitive") -> np.ndarray:
@@ -671,15 +752,68 @@ def offer_point(prim: "Primitive") -> np.ndarray:
     return prim._offer
 
 
-def _hold_out(base: float | None = None, xy=None, duration: float = 2.5) -> Move:
+class CarryOver(Phase):
+    """Before carrying the object in the hand to ``goal(prim)``: if the straight way passes by an object
+    standing on the table (``locate``), first rise until what the hand carries clears that object's top
+    by CARRY_CLEARANCE, and cross at that height; nothing to do otherwise. The IK keeps the arm clear of
+    standing objects, not what it carries."""
+
+    name = "carry over"
+
+    def __init__(self, goal: Callable[["Primitive"], mink.SE3]) -> None:
+        self.goal = goal
+
+    def start(self, prim):
+        self.moves: list[Move] = []
+        obj = prim.object
+        if obj not in OBJECT_HEIGHT:
+            return
+        here = prim.robot.commanded_tcp_pose()
+        goal = self.goal(prim)
+        a, b = here.translation(), goal.translation()
+        below = GRASP_HEIGHT[obj]          # the carried object's base below the TCP
+        need = -np.inf
+        for other in OBJECTS:
+            xy = prim.locate(other) if other != obj else None
+            if xy is None:
+                continue
+            d = float(segment_distance(np.asarray(xy, float), a[:2], b[:2]))
+            if d < RADIUS[obj] + RADIUS[other] + CARRY_CLEARANCE:
+                top = TABLE_Z + OBJECT_HEIGHT[other] + (STOPPER_HEIGHT if other == "bottle" else 0.0)
+                need = max(need, top + CARRY_CLEARANCE + below)
+        if need <= max(a[2], b[2]) - 0.005:
+            return
+        rot = here.rotation()
+        self.moves = [Move("carry over: rise", lambda p, q=np.array([a[0], a[1], need]): poses.pose(rot, q), duration=1.0,
+                           tolerance=0.03),
+                      Move("carry over: across", lambda p, q=np.array([b[0], b[1], need]): poses.pose(goal.rotation(), q),
+                           duration=1.8, tolerance=0.03)]
+        self.moves[0].start(prim)
+        self.t0 = 0.0
+
+    def tick(self, prim, dt, t):
+        if not self.moves:
+            prim.robot.hold()
+            return Status.SUCCEEDED, ""
+        status, reason = self.moves[0].tick(prim, dt, t - self.t0)
+        if status is Status.SUCCEEDED:
+            self.moves.pop(0)
+            if self.moves:
+                self.moves[0].start(prim)
+                self.t0 = t
+            return Status.RUNNING, ""
+        return status, reason
+
+
+def _hold_out(base: float | None = None, xy=None, duration: float = 2.5) -> list[Phase]:
     """Hold the object in the hand out: at ``xy`` with its base ``base`` above the table, or where the
-    person will take it (`offer_point`)."""
+    person will take it (`offer_point`); over what stands in the way (`CarryOver`)."""
     def goal(p):
         if xy is None:
             return _grasp_pose_at(p, offer_point(p), p.object)
         c = np.array([xy[0], xy[1], TABLE_Z + base + GRASP_HEIGHT[p.object]])
         return _grasp_pose_at(p, c, p.object)
-    return Move("hold out", goal, duration=duration, tolerance=0.03)
+    return [CarryOver(goal), Move("hold out", goal, duration=duration, tolerance=0.03)]
 
 
 #: the phase of a hand-over in which the object is held out for the person to take
@@ -869,7 +1003,7 @@ class HoldBottleForStopper(Primitive):
 
     def phases(self):
         hold = [
-            _hold_out(self.HOLD_BASE, self.HOLD_XY),
+            *_hold_out(self.HOLD_BASE, self.HOLD_XY),
             WaitFor("hold steady for the stopper", lambda p: p.stopper_removed(), self.timeout,
                     "the stopper was not removed"),
             Wait("settle", 0.3),
@@ -894,7 +1028,7 @@ class HoldBottleForStopper(Primitive):
         return _reach_and_grasp(self) + [
             _FreezeXY(),
             Move("lift", lambda p: _side_grasp_pose(p, up=LIFT), duration=1.2),
-            _hold_out(self.HOLD_BASE, self.HOLD_XY),
+            *_hold_out(self.HOLD_BASE, self.HOLD_XY),
             WaitFor("hold steady for the stopper", lambda p: p.stopper_removed(), self.timeout,
                     "the stopper was not removed"),
             Wait("settle", 0.3),
@@ -931,7 +1065,7 @@ class Pour(Primitive):
 
     def _pour_pose(self, tilt: float) -> mink.SE3:
         """TCP pose holding the bottle rolled by ``tilt`` with the mouth, at the full tilt, over the glass centre."""
-        mouth = np.array([self._glass[0], self._glass[1], TABLE_Z + GLASS_HEIGHT + self.MOUTH_ABOVE_RIM])
+        mouth = np.array([self._glass[0], self._glass[1], TABLE_Z + OBJECT_HEIGHT["glass"] + self.MOUTH_ABOVE_RIM])
         rot0 = poses.side_rotation(mouth, self.robot.shoulder)
         rot_full = rot0 @ mink.SO3.from_x_radians(self.TILT)
         tcp = mouth - rot_full.as_matrix() @ np.array([0.0, 0.0, BOTTLE_MOUTH_ABOVE_GRASP])
@@ -963,7 +1097,7 @@ class HandOver(Primitive):
     def phases(self):
         return _reach_and_grasp(self) + [
             Move("lift", lambda p: _side_grasp_pose(p, up=LIFT), duration=1.5),
-            _hold_out(duration=3.0),
+            *_hold_out(duration=3.0),
             *_give(self.timeout),
         ]
 
@@ -982,7 +1116,7 @@ class TurnAndHandOver(Primitive):
         def hold(p):
             return _grasp_pose_at(p, offer_point(p), p.object, roll=math.pi)
         return _reach_and_grasp(self) + _turn_phases() + [
-            Move("hold out", hold, duration=2.5, tolerance=0.03),
+            CarryOver(hold), Move("hold out", hold, duration=2.5, tolerance=0.03),
             *_give(self.timeout),
         ]
 

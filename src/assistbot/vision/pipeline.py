@@ -27,10 +27,9 @@ from assistbot.task import OBJECT_STATES
 from assistbot.vision import library
 from assistbot.vision.capture import StereoFrame
 from assistbot.vision.detect import HELD_DIST, MAX_TILT, Detections, Detector, axis_distance
-from assistbot.world.layout import zone_of
+from assistbot.world.layout import HANDOVER_ZONE_X, zone_of
 
-HELD_OUT_X = -0.20          # a raised hand beyond this x (toward the robot) is held out
-HELD_OUT_Z = 0.14
+HELD_OUT_Z = 0.14           # m above the table: a hand in the hand-over zone this high is raised toward the robot
 IN_HAND_XY = 0.10           # a grasping hand this close (m, horizontally) to an object holds it
 STOPPER_SEEN = 0.04         # red touching the bottle, as a share of a stopper's expected area: closed
 HAND_AT_TOP = 0.12          # m: a hand this close to the bottle's top may hide the stopper
@@ -185,7 +184,7 @@ class Vision:
                     along = float(v @ d)
                     return abs(float(v[0] * d[1] - v[1] * d[0])) if along > -0.05 else 9.0
                 hp.pointed_at = min(seen_objs, key=off)
-        hp.held_out = bool(X[0] > HELD_OUT_X and X[2] > HELD_OUT_Z and posture in ("grasp_ag", "grasp_sg", "open_palm_request"))
+        hp.held_out = bool(X[0] > HANDOVER_ZONE_X[0] and X[2] > HELD_OUT_Z and posture in ("grasp_ag", "grasp_sg", "open_palm_request"))
         if hp.object_in_hand and hp.held_out and not p.objects[hp.object_in_hand].seen:
             # held out but not placed (lifted objects are hard to place): in the hand's zone; one that is
             # seen keeps its own, which the hand's end (fingers around it, past the middle line) is not

@@ -39,6 +39,11 @@ STOPPER_HEIGHT = 0.016         # the cap above the neck when closed
 PARTICLE_RADIUS = 0.006
 N_PARTICLES = 40
 
+#: the hand-over zone across the middle line (table x, m): the person's hand beyond its near end with
+#: something in it (or open) holds it out to the robot; the robot's hand short of its far end is held
+#: out to the person. The one definition for vision, the oracle and the person's eyes.
+HANDOVER_ZONE_X = (-0.15, 0.08)
+
 #: default places (table x, y) per object and zone
 DEFAULT_POSITIONS = {
     ("bottle", "HWS"): (-0.22, -0.12),

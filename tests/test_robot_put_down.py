@@ -1,0 +1,80 @@
+"""Putting an object down in the physics: by feel when it hangs lower in the hand than assumed, and over
+what stands in the way.
+
+Targets come from ground truth here (a stand-in for perception), as in test_robot_primitives.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from assistbot.robot import primitives as P
+from assistbot.robot.controller import RobotController
+from assistbot.robot.primitives import Status
+from assistbot.robot.sim import body_xy, run
+from assistbot.world import Arrangement, build_world
+from assistbot.world.layout import TABLE_Z
+
+
+class _PlaceGraspedLow(P.PlaceInRWS):
+    """PlaceInRWS whose grasp closes ``below`` m lower on the object than the put-down assumes: the
+    object's base then hangs that much higher under the hand (as after a grasp from the person's
+    hand at a height seen a little off)."""
+
+    def __init__(self, robot, obj, below, **kw):
+        super().__init__(robot, obj, **kw)
+        self.below = below
+
+    def phases(self):
+        return (P._reach_and_grasp(self, height=P.GRASP_HEIGHT[self.object] - self.below)
+                + [P.Move("lift", lambda p: P._side_grasp_pose(p, up=P.LIFT), duration=1.2)]
+                + P._put_down_at(lambda p: p.spot) + P._retract())
+
+
+def _base_z(w, obj) -> float:
+    """The object's base above the table top (m), upright (its body origin is its base)."""
+    return float(w.data.xpos[w.body_id[obj]][2]) - TABLE_Z
+
+
+@pytest.mark.parametrize("obj, below", [("glass", 0.02), ("bottle", 0.03)])
+def test_an_object_held_lower_than_assumed_is_lowered_until_the_table_carries_it(obj, below):
+    arr = ("HWS:closed", "RWS:empty@0.20,-0.12") if obj == "glass" else ("RWS:open@0.20,-0.12", "HWS:empty")
+    w = build_world(Arrangement.from_options(*arr), seed=0)
+    robot = RobotController(w.model, w.data)
+    prim = _PlaceGraspedLow(robot, obj, below, spot=(0.22, 0.08))
+    at_release: list[float] = []
+
+    def watch(t):
+        if prim.progress.phase == "release" and not at_release:
+            at_release.append(_base_z(w, obj))
+
+    pr, s = run(w, prim, body_xy(w, obj), each_tick=watch)
+    assert pr.status is Status.SUCCEEDED, pr.reason
+    # let go of only once it stood on the table, not dropped from where it hung
+    assert at_release and at_release[0] < 0.01, at_release
+    for _ in range(25):
+        w.step(10)
+    p = w.data.xpos[w.body_id[obj]]
+    assert w.data.xmat[w.body_id[obj]][8] > 0.98          # upright
+    assert np.hypot(p[0] - 0.22, p[1] - 0.08) < 0.03 and abs(p[2] - TABLE_Z) < 0.01
+
+
+def test_what_the_hand_carries_passes_over_an_object_standing_in_the_way():
+    """The glass carried across the RWS from one side of the closed bottle to the other: the straight
+    way at the usual carrying height goes through the bottle; the hand rises over it and the bottle
+    stands where it stood."""
+    w = build_world(Arrangement.from_options("RWS:closed@0.21,0.0", "RWS:empty@0.20,-0.14"), seed=0)
+    robot = RobotController(w.model, w.data)
+    bottle = body_xy(w, "bottle")
+    b0 = np.array(bottle())
+    robot.ik.set_obstacles({"bottle": tuple(b0)})       # as the executor does with what it saw standing
+    prim = P.PlaceInRWS(robot, "glass", spot=(0.20, 0.14), locate=lambda name: bottle() if name == "bottle" else None)
+    pr, s = run(w, prim, body_xy(w, "glass"))
+    assert pr.status is Status.SUCCEEDED, pr.reason
+    for _ in range(25):
+        w.step(10)
+    assert w.data.xmat[w.body_id["bottle"]][8] > 0.98
+    assert np.linalg.norm(np.array(bottle()) - b0) < 0.01
+    g = w.data.xpos[w.body_id["glass"]]
+    assert np.hypot(g[0] - 0.20, g[1] - 0.14) < 0.03 and w.data.xmat[w.body_id["glass"]][8] > 0.98
