@@ -99,10 +99,13 @@ def robot_to_person(obj, offset):
     assert pr.status is P.Status.SUCCEEDED, pr.reason
     _settle(w, human, 3.0)
     st = w.state()
-    assert st.human_holds == obj and st.robot_holds is None, st.summary()
+    # the taker holds it; an empty glass, which she cannot drink from, she then sets down on her side
+    taken = [b for b in human.done if b.name == "take_from_robot"]
+    assert taken and taken[-1].status == "success", taken[-1].reason if taken else human.done
+    assert st.robot_holds is None, st.summary()
+    assert st.human_holds == obj or (obj == "glass" and st.human_holds is None and st.objects[obj].zone == "HWS"), st.summary()
     assert st.objects[obj].upright
     assert s.human >= 0.05
-    assert human.done[-1].name == "take_from_robot" and human.done[-1].status == "success", human.done[-1].reason
     _nothing_else_moved(w, obj, other0)
 
 

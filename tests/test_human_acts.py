@@ -181,7 +181,11 @@ def test_take_from_robot(obj, at, glass_zone):
     hc.run(12.0, robot=watch)
     _ok(hc.events(), "take_from_robot")
     st = w.state()
-    assert st.human_holds == obj and s.holds() is None and st.objects[obj].pos[0] < -0.15
+    assert s.holds() is None and st.objects[obj].pos[0] < -0.15
+    if obj == "glass":   # an empty glass is not held for ever: set down upright on her side
+        assert st.human_holds is None and st.objects[obj].upright
+    else:
+        assert st.human_holds == obj
     assert watch.x_max <= HANDOVER_X_MAX                      # the hand stayed in the hand-over zone
 
 
@@ -252,8 +256,12 @@ def test_passive_takes_the_object_offered():
     hc.run(3.0, robot=s.tick)
     assert hc.view.offers == "glass" and hc.events("start") == []
     hc.hear("offer:glass", w.time)
-    _ok(_run_until_done(hc, s, 25.0), "take_from_robot")
-    assert w.state().human_holds == "glass" and s.holds() is None
+    _ok(_run_until_done(hc, s, 40.0, "put_down"), "put_down")
+    # an empty glass is not held for ever: taken, then set down on her side, to pour into or to be filled
+    assert [e.what for e in hc.events("success")] == ["take_from_robot", "put_down"]
+    st = w.state()
+    assert st.human_holds is None and s.holds() is None
+    assert st.objects["glass"].zone == "HWS" and st.objects["glass"].upright
 
 
 def test_passive_drinks_from_a_full_glass_handed_to_him():
@@ -277,6 +285,22 @@ def test_passive_drinks_when_told_the_glass_is_ready():
     hc.hear("suggest:drink", w.time)
     _ok(_run_until_done(hc, s, 25.0), "drink")
     assert w.state().liquid.drunk >= DRINK_FRACTION * layout.N_PARTICLES
+
+
+def test_told_to_drink_with_the_bottle_in_hand_the_person_puts_it_down_first():
+    """The full glass stands on her side and she holds the open bottle: told that the glass is ready,
+    she sets the bottle down and drinks (the drink needs the hand)."""
+    w, s, hc = _setup(_arr({"zone": "HWS", "state": "open", "position": [-0.22, -0.12]},
+                           {"zone": "HWS", "state": "full", "position": [-0.22, 0.12]}))
+    hc.start("grasp", object="bottle", grip="sg")
+    _ok(_run_until_done(hc, s, 15.0, "grasp"), "grasp")
+    assert w.state().human_holds == "bottle"
+    hc.hear("suggest:drink", w.time)
+    _ok(_run_until_done(hc, s, 40.0, "drink"), "drink")
+    assert [e.what for e in hc.events("start")] == ["grasp", "put_down", "drink"]
+    st = w.state()
+    assert st.objects["bottle"].upright and st.objects["bottle"].pos[0] < 0
+    assert st.liquid.drunk >= DRINK_FRACTION * layout.N_PARTICLES
 
 
 # ---------------------------------------------------------------------------- scripts wait for their events

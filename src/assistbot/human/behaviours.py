@@ -36,6 +36,11 @@ MEET_TRIES = 3
 MEET_PATIENCE = 12.0
 #: N: an object pressing back in the person's grip this hard has met something (the robot's hand)
 FEEL_FORCE = 6.0
+#: the robot's hand held out still this long (s), within STILL_TOLERANCE (m), before the person reaches
+#: for what it offers; a grip that gives way before the robot has let go is taken again, TAKE_TRIES in all
+OFFER_STILL = 0.5
+STILL_TOLERANCE = 0.01
+TAKE_TRIES = 2
 #: the hand's height (world z) while it holds an object just taken from the robot, in toward the body
 TAKEN_Z = 0.90
 #: the farthest table x at which the person sets an object down under the robot's hand
@@ -370,17 +375,45 @@ def hand_to_robot(c, object: str, grip: str | None = None, timeout: float = 40.0
     return ok, f"{object} handed over"
 
 
+def _offered_still(c, object: str | None, timeout: float) -> Generator[None, None, bool]:
+    """Wait until the robot holds ``object`` (any, when None) out and its hand has kept still for
+    OFFER_STILL s: a person reaches for a thing handed to them once it has arrived, not while it moves."""
+    t_end = c.t + timeout
+    anchor, since = None, c.t
+    while True:
+        offered = c.view.offers is not None and (object is None or c.view.offers == object)
+        here = np.array(c.view.hand_pos)
+        if not offered or anchor is None or np.linalg.norm(here - anchor) > STILL_TOLERANCE:
+            anchor, since = here, c.t
+        elif c.t - since >= OFFER_STILL:
+            return True
+        if c.t >= t_end:
+            return False
+        yield
+
+
 def take_from_robot(c, object: str | None = None, timeout: float = 20.0) -> Gen:
-    """Take the object the robot holds out: reach it with a side grip, close, wait for the robot to let go."""
-    if not (yield from _wait_until(c, lambda: c.view.offers is not None and (object is None or c.view.offers == object), timeout)):
+    """Take the object the robot holds out once it has arrived: reach it with a side grip, close, wait for
+    the robot to let go. A grip that gives way before the robot has let go (it pulled or moved on) is
+    taken again while the robot still holds the object out."""
+    if not (yield from _offered_still(c, object, timeout)):
         return False, "the robot offers nothing"
     obj = c.view.offers
-    ok, why = yield from grasp(c, obj, "sg", lift=False)
-    if not ok:
-        return False, why
-    if not (yield from _wait_until(c, lambda: c.view.holds != obj, timeout)):
+    for _ in range(TAKE_TRIES):
+        ok, why = yield from grasp(c, obj, "sg", lift=False)
+        if not ok:
+            return False, why
+        # the robot lets go, or the grip gives way (felt: the hand holds nothing any more)
+        if not (yield from _wait_until(c, lambda: c.view.holds != obj or c.world.human_holding() != obj, timeout)):
+            c.arm.set_posture("open")
+            return False, f"the robot did not let go of the {obj}"
+        if c.world.human_holding() == obj:
+            break
         c.arm.set_posture("open")
-        return False, f"the robot did not let go of the {obj}"
+        if not (yield from _offered_still(c, obj, timeout)):
+            return False, f"the {obj} slipped from the grip and the robot no longer offers it"
+    else:
+        return False, f"the grip on the {obj} gave way {TAKE_TRIES} times"
     # brought in toward the body, above a free place on this side (not over what stands there)
     spot = own_side_spot(c, obj)
     yield from _move(c, np.array([spot[0], spot[1], TAKEN_Z]), None)

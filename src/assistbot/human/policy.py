@@ -13,8 +13,9 @@ from assistbot.world.layout import HANDOVER_ZONE_X
 
 #: behaviours that a robot's utterance does not interrupt (the hand is busy with an object)
 UNINTERRUPTIBLE = ("pull_stopper", "drink", "put_down", "turn_glass", "pour", "take_from_robot", "hand_to_robot")
-#: ... but for a request that goes on with what the hand holds: asked to set down what it holds out
-CONTINUES = {"hand_to_robot": ("put_down_for_robot",)}
+#: ... but for a request that goes on with what the hand holds: asked to set down what it holds out,
+#: or told to drink from the full glass it is handing over
+CONTINUES = {"hand_to_robot": ("put_down_for_robot", "drink")}
 
 
 
@@ -55,7 +56,7 @@ def response_to_tag(c, tag: str) -> list[tuple[str, dict]]:
     if kind == "give_object":
         return [("hand_to_robot", {"object": what, "grip": "ag"})]
     if kind == "drink":
-        return [("drink", {})]
+        return ([("put_down", {})] if holding not in (None, "glass") else []) + [("drink", {})]
     if kind == "put_down_here" and holding in ("bottle", "glass"):
         return [("put_down_for_robot", {})]
     if tag == "error:cannot_remove_stopper" and holding == "bottle" and c.profile.initiative:
@@ -78,11 +79,12 @@ def response_to_sight(c, key: str) -> list[tuple[str, dict]]:
 def follow_up(c, done) -> list[tuple[str, dict]]:
     """What every partner does next after a behaviour of his succeeded (passive ones too).
 
-    Holding a full glass he was handed, he drinks from it. Handed the bottle while the glass is out
-    of his reach (in the robot's workspace), he cannot pour: he puts the bottle down on his side,
-    where the robot can take it again, rather than hold it for ever."""
-    if done.name == "take_from_robot" and c.world.human_holding() == "glass" and c.world.state().glass_state == "full":
-        return [("drink", {})]
+    Holding a full glass he was handed, he drinks from it; handed an empty one, he sets it down on his
+    side (to pour into it, or for the robot to fill), rather than hold it for ever. Handed the bottle
+    while the glass is out of his reach (in the robot's workspace), he cannot pour: he puts the bottle
+    down on his side, where the robot can take it again."""
+    if done.name == "take_from_robot" and c.world.human_holding() == "glass":
+        return [("drink", {})] if c.world.state().glass_state == "full" else [("put_down", {"object": "glass"})]
     if done.name == "take_from_robot" and c.world.human_holding() == "bottle" and _scene(c)["glass_x"] > 0:
         return [("put_down", {"object": "bottle"})]
     return []
