@@ -477,3 +477,15 @@ def test_a_hand_turning_the_glass_behind_it_is_not_read_as_pointing_at_the_bottl
     assert len(read) > 30 and read.count("pointing") <= 1, read
     said = [e["tag"] for e in ep.log if e["kind"] == "say"]
     assert "understood:point_bottle" not in said and "infer:get_bottle" not in said, said
+
+
+@pytest.mark.parametrize("seen_at, away", [((0.21, 0.02, 0.0), False), ((0.05, 0.20, 0.0), True), (None, False)])
+def test_the_object_in_the_robots_hand_is_placed_at_the_hand_unless_seen_elsewhere(seen_at, away):
+    """Vision places what the robot believes it holds at the robot's hand; seen placed far from it (the
+    grasp closed on something else), it reports where it sees it."""
+    from assistbot.vision.detect import ObjectDetection
+    from assistbot.vision.pipeline import _seen_away_from
+
+    tcp = np.array([0.20, 0.0, 0.08])
+    d = ObjectDetection("bottle", seen_at is not None, None if seen_at is None else np.array(seen_at))
+    assert _seen_away_from(d, tcp) == away

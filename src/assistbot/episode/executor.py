@@ -9,13 +9,15 @@ cognition learns that its decision was carried out.
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
-from assistbot.cognition.percept import Percept
+from assistbot.cognition.percept import NOT_IN_HAND_XY, Percept
 from assistbot.robot.actions import ACTION_PRIMITIVES
 from assistbot.robot.controller import RobotController
 from assistbot.robot.primitives import Status
 from assistbot.speech import reading_time
+from assistbot.task import OBJECTS
 from assistbot.world.layout import OBJECT_HEIGHT
 
 # How long the robot keeps still for an action that is only speech.
@@ -28,6 +30,8 @@ WAIT_MAX = 20.0
 OPEN_HAND_MEMORY = 30.0
 #: an object seen with its base this low (m above the table) stands on the table
 STANDING_Z = 0.03
+#: s for which what the hand believes it holds must be seen away from the hand before the grasp counts as lost
+AWAY_SECONDS = 1.0
 
 
 @dataclass
@@ -57,11 +61,18 @@ class RobotExecutor:
         self._open_hand: tuple[float, tuple[float, float, float]] | None = None  # (t, where) the open hand was seen held out
         self._held_out_seen = False  # the object the person holds out has been seen during this action
         self._aim: str | None = None  # what the action's target is perceived as: an object, or "held_out"
+        self._in_hand: str | None = None       # what the hand closed on (`holding`)
+        self._held_out_name: str | None = None  # what the person was last seen holding, during this action
+        self._away_since: float | None = None   # since when what the hand believes it holds is seen elsewhere
+        self._lost = False                       # ... long enough: this action's grasp is not of it
 
     # -- what the robot knows of its own body ------------------------------------------------
     def holding(self) -> str | None:
-        body = self.robot.gripper.holding()
-        return body if body in ("bottle", "glass") else None
+        """What the hand holds: the object it closed on (what it set out to grasp, or what it saw the
+        person hold out), while its fingers still feel something; the hand's skin does not tell what."""
+        if not self.robot.gripper.grasps():
+            self._in_hand = None
+        return self._in_hand
 
     def proprioception(self) -> dict:
         return {"holding": self.holding(), "action": self.action, "status": self.status}
@@ -128,6 +139,20 @@ class RobotExecutor:
         # low, and a grasp too low cannot set the object down again (the palm meets the table first)
         return max(seen) if seen else None
 
+    def _seen_elsewhere(self) -> bool:
+        """What the hand believes it holds has been seen away from the hand (vision places an object in
+        the robot's hand at the hand unless it sees it elsewhere) for AWAY_SECONDS."""
+        p, obj = self._percept, self._in_hand
+        o = p.objects.get(obj) if p is not None and obj else None
+        tcp = self.robot.tcp_pose().translation()
+        away = bool(o is not None and o.seen and math.hypot(o.position[0] - tcp[0], o.position[1] - tcp[1]) > NOT_IN_HAND_XY)
+        if not away:
+            self._away_since = None
+            return False
+        self._away_since = p.t if self._away_since is None else self._away_since
+        self._lost = p.t - self._away_since >= AWAY_SECONDS
+        return self._lost
+
     def _partner_hand(self) -> tuple[float, float, float] | None:
         """Where the partner's open hand was last seen held out (table x, y, z), within OPEN_HAND_MEMORY s."""
         now = self._percept.t if self._percept is not None else 0.0
@@ -170,12 +195,15 @@ class RobotExecutor:
         cls, aim = spec
         self._aim = aim
         self._held_out_seen = False
+        self._held_out_name = None
+        self._away_since, self._lost = None, False
         obj = aim
         if aim == "held_out" and self._percept is not None and self._percept.hand.seen and self._percept.hand.object_in_hand:
             obj = self._percept.hand.object_in_hand   # what the person holds out, as seen: what the hand sets out to grasp
         self.primitive = cls(self.robot, obj, human_holds=lambda: self._human_holds(aim or self.primitive.object),
                              locate=self._locate, stopper_removed=self._stopper_removed,
-                             lifted=lambda: self._lifted(aim), partner_hand=self._partner_hand)
+                             lifted=lambda: self._lifted(aim), partner_hand=self._partner_hand,
+                             identify=lambda: self._held_out_name, seen_elsewhere=self._seen_elsewhere)
         # hidden right now (often behind the robot's own arm): start from where it was last seen;
         # the gaze goes there and the target field takes over once the cameras see it again
         self.primitive.start(self._locate(aim))
@@ -185,6 +213,8 @@ class RobotExecutor:
         h = percept.hand
         if h.seen and h.posture == "open_palm_request" and h.held_out:
             self._open_hand = (percept.t, tuple(float(v) for v in h.position))
+        if h.seen and h.object_in_hand:
+            self._held_out_name = h.object_in_hand
         held = percept.objects.get(h.object_in_hand) if h.seen and h.object_in_hand else None
         if held is not None and held.seen:
             self._held_out_seen = True
@@ -212,6 +242,10 @@ class RobotExecutor:
             return
         self.robot.ik.set_obstacles(self._obstacles())
         prog = self.primitive.tick(dt, self._target_xy(self._aim))
+        if self._lost:
+            self._in_hand = None      # the cameras saw it elsewhere: whatever the hand holds, not that
+        elif self.primitive.carrying and self.primitive.object in OBJECTS:
+            self._in_hand = self.primitive.object
         if self.primitive.released is not None:
             # where it set the object down, the robot knows without looking (its arm may hide it now)
             name, xy = self.primitive.released

@@ -35,7 +35,7 @@ REACH = 0.78
 class Proprioception:
     q: np.ndarray          # arm joint angles (rad)
     tcp: mink.SE3          # TCP pose from the joint angles (world)
-    holding: str | None    # body grasped, from finger contacts
+    grasping: bool         # the hand's skin feels a grasp (two fingers, or a finger and the palm)
     fingers: np.ndarray    # proximal finger angles (rad)
 
 
@@ -96,7 +96,7 @@ class RobotController:
         self.data.ctrl[self._tilt] = tilt
 
     def proprioception(self) -> Proprioception:
-        return Proprioception(self.q(), self.tcp_pose(), self.gripper.holding(), self.gripper.finger_angles())
+        return Proprioception(self.q(), self.tcp_pose(), self.gripper.grasps(), self.gripper.finger_angles())
 
 
     def reach_distance(self, point: np.ndarray) -> float:

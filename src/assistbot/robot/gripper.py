@@ -1,16 +1,16 @@
-"""The three-finger gripper: open, close with bounded force, grasp sensing from finger contacts.
+"""The three-finger gripper: open, close with bounded force, grasp sensing from its skin.
 
 The finger servos (``robot_finger1..3``) are position actuators with a torque
 limit (1.5 N m, about 20 N at a fingertip): commanding "closed" beyond the
-contact squeezes with at most that force, which is the bound. What the hand
-holds is read from contacts, as a hand with touch sensors would: a body is
-held when at least two different fingers touch it (palm contact counts as a
-third side).
+contact squeezes with at most that force, which is the bound. That the hand
+holds something is felt by its touch sensors (the MJCF's ``robot_*_touch``:
+the normal force on the palm and on each finger link), as a real hand's
+skin would: two fingers press, or a finger and the palm opposite. The hand
+does not know *what* it holds; that follows from what it set out to grasp
+and from what the cameras see (`assistbot.episode.executor`).
 """
 
 from __future__ import annotations
-
-from dataclasses import dataclass
 
 import mujoco
 import numpy as np
@@ -20,27 +20,18 @@ from assistbot.world import GRIPPER_CLOSED, GRIPPER_OPEN
 FINGER_ACTUATORS = ("robot_finger1", "robot_finger2", "robot_finger3")
 SPREAD_ACTUATOR = "robot_spread"
 FINGER_JOINTS = ("robot_f1_prox", "robot_f2_prox", "robot_f3_prox")
-FINGER_GEOMS = {
-    "f1": ("robot_f1_prox", "robot_f1_dist"),
-    "f2": ("robot_f2_prox", "robot_f2_dist"),
-    "f3": ("robot_f3_prox", "robot_f3_dist"),
-    "palm": ("robot_palm",),
+#: the hand's parts and the touch sensors on each
+TOUCH_SENSORS = {
+    "f1": ("robot_f1_prox_touch", "robot_f1_dist_touch"),
+    "f2": ("robot_f2_prox_touch", "robot_f2_dist_touch"),
+    "f3": ("robot_f3_prox_touch", "robot_f3_dist_touch"),
+    "palm": ("robot_palm_touch",),
 }
+#: N on a part for it to count as pressing, and in all for a grasp
+PRESS_N = 0.05
+GRASP_N = 0.5
 OPEN = GRIPPER_OPEN      # fingers splayed: the widest opening (the glass, 80 mm, fits)
 CLOSED = GRIPPER_CLOSED  # beyond any grasp: the torque limit bounds the squeeze
-
-
-@dataclass
-class Touch:
-    """Per body touched by the hand: which parts touch it and the total normal force (N)."""
-
-    body: str
-    parts: frozenset[str]
-    force: float
-
-    @property
-    def fingers(self) -> int:
-        return len(self.parts - {"palm"})
 
 
 class Gripper:
@@ -49,14 +40,8 @@ class Gripper:
         self._act = np.array([model.actuator(n).id for n in FINGER_ACTUATORS])
         self._spread = model.actuator(SPREAD_ACTUATOR).id
         self._qadr = np.array([model.jnt_qposadr[model.joint(j).id] for j in FINGER_JOINTS])
-        self._part_of_geom: dict[int, str] = {}
-        for part, geoms in FINGER_GEOMS.items():
-            for g in geoms:
-                self._part_of_geom[model.geom(g).id] = part
-        self._part_code = np.zeros(model.ngeom, dtype=np.int8)  # 1 for the hand's geoms
-        self._part_code[list(self._part_of_geom)] = 1
+        self._touch = {part: np.array([int(model.sensor(n).adr[0]) for n in names]) for part, names in TOUCH_SENSORS.items()}
         self.command = OPEN
-        self._force = np.zeros(6)
         ws = model.sensor("robot_wrist_force")
         self._wrist = slice(int(ws.adr[0]), int(ws.adr[0]) + 3)
 
@@ -79,36 +64,16 @@ class Gripper:
     def finger_angles(self) -> np.ndarray:
         return self.data.qpos[self._qadr].copy()
 
-    def touches(self) -> list[Touch]:
-        """Bodies in contact with the hand now, with the touching parts and the normal force."""
-        m, d = self.model, self.data
-        n = d.ncon
-        if n == 0:
-            return []
-        g1, g2 = d.contact.geom1[:n], d.contact.geom2[:n]
-        p1, p2 = self._part_code[g1], self._part_code[g2]
-        # contacts between a hand part and something that is not the hand
-        sel = np.flatnonzero((p1 > 0) != (p2 > 0))
-        if sel.size == 0:
-            return []
-        parts: dict[int, set[str]] = {}
-        force: dict[int, float] = {}
-        for i in sel:
-            mine, other = (g1[i], g2[i]) if p1[i] > 0 else (g2[i], g1[i])
-            body = int(m.geom_bodyid[other])
-            mujoco.mj_contactForce(m, d, int(i), self._force)
-            parts.setdefault(body, set()).add(self._part_of_geom[int(mine)])
-            force[body] = force.get(body, 0.0) + abs(float(self._force[0]))
-        return [Touch(m.body(b).name, frozenset(p), force[b]) for b, p in parts.items()]
+    def pressure(self) -> dict[str, float]:
+        """The normal force (N) each part of the hand feels: fingers f1, f2, f3 and the palm."""
+        sd = self.data.sensordata
+        return {part: float(sd[adr].sum()) for part, adr in self._touch.items()}
 
-    def holding(self) -> str | None:
-        """The body the hand grasps (two fingers or a finger and the palm opposite), else None."""
-        best = None
-        for t in self.touches():
-            if (t.fingers >= 2 or (t.fingers >= 1 and "palm" in t.parts)) and t.force > 0.5:
-                if best is None or t.force > best.force:
-                    best = t
-        return None if best is None else best.body
+    def grasps(self) -> bool:
+        """The hand holds something: two fingers press on it, or a finger and the palm opposite."""
+        p = self.pressure()
+        fingers = sum(p[f] > PRESS_N for f in ("f1", "f2", "f3"))
+        return (fingers >= 2 or (fingers >= 1 and p["palm"] > PRESS_N)) and sum(p.values()) > GRASP_N
 
     def wrist_force(self) -> np.ndarray:
         """The wrist force-torque sensor's force (N, in the wrist frame): the hand's and its load's weight and pulls."""

@@ -44,6 +44,7 @@ import numpy as np
 
 from assistbot.robot import poses
 from assistbot.robot.controller import REACH, TCP_MIN_X, RobotController
+from assistbot.robot.gripper import PRESS_N
 from assistbot.robot.placement import put_down_spot, segment_distance, shared_spot
 from assistbot.robot.target_field import TargetField
 from assistbot.task import OBJECTS
@@ -183,10 +184,10 @@ class Grip(Phase):
         prim.robot.hold()
         g = prim.robot.gripper
         if self.close:
-            held = g.holding()
-            if prim.object == "held_out" and held in ("bottle", "glass"):
-                prim.object = held  # the held-out object is now known by touch
-            if held is not None and (prim.object is None or held == prim.object):
+            if g.grasps():
+                if prim.object == "held_out":
+                    # the hand feels that it holds, not what: what the person was seen holding out
+                    prim.object = prim.identify() or "held_out"
                 self.since = t if self.since is None else self.since
                 if t - self.since >= self.settle:
                     return Status.SUCCEEDED, ""
@@ -195,7 +196,8 @@ class Grip(Phase):
             if g.fully_closed():
                 return Status.FAILED, f"{self.name}: the hand closed on nothing"
             if t >= self.timeout:
-                return Status.FAILED, f"{self.name}: no grasp of {prim.object} after {self.timeout:.1f} s (touching {[x.body for x in g.touches()]})"
+                pressing = [part for part, f in g.pressure().items() if f > PRESS_N]
+                return Status.FAILED, f"{self.name}: no grasp of {prim.object} after {self.timeout:.1f} s (pressing: {pressing or 'nothing'})"
             return Status.RUNNING, ""
         # let go: wait until the fingers are open (the hand then backs off without dragging the object)
         if t >= self.settle and (float(g.finger_angles().max()) < OPENED or t >= self.timeout):
@@ -308,7 +310,9 @@ class Primitive:
                  locate: Callable[[str], tuple[float, float] | None] | None = None,
                  stopper_removed: Callable[[], bool] | None = None,
                  lifted: Callable[[], float | None] | None = None,
-                 partner_hand: Callable[[], tuple[float, float, float] | None] | None = None) -> None:
+                 partner_hand: Callable[[], tuple[float, float, float] | None] | None = None,
+                 identify: Callable[[], str | None] | None = None,
+                 seen_elsewhere: Callable[[], bool] | None = None) -> None:
         """``obj``: the object acted on ("bottle", "glass", "held_out" for whatever the human holds out).
 
         Callbacks (all from perception, never from the physics' ground truth):
@@ -320,6 +324,10 @@ class Primitive:
                              hand go to that height (`base_z`).
           partner_hand()     table (x, y, z) where the person's open hand was last seen held out, or
                              None; objects are offered there (`offer_point`).
+          identify()         the object the person was seen holding out ("bottle", "glass"), or None:
+                             what a grasp of "held_out" closed on (the hand feels only that it holds).
+          seen_elsewhere()   True when the cameras have kept seeing the object the hand believes it
+                             carries away from the hand: the grasp closed on something else.
         """
         self.robot = robot
         self.object = obj
@@ -329,6 +337,8 @@ class Primitive:
         self.stopper_removed = stopper_removed or (lambda: False)
         self.lifted = lifted or (lambda: None)
         self.partner_hand = partner_hand or (lambda: None)
+        self.identify = identify or (lambda: None)
+        self.seen_elsewhere = seen_elsewhere or (lambda: False)
         self._offer: np.ndarray | None = None
         self._failure: Progress | None = None    # a failure being ended safely (Phase.fallback)
         self.released: tuple[str, tuple[float, float]] | None = None  # the object let go of last, and where
@@ -409,8 +419,10 @@ class Primitive:
         self._t_total += dt
         phase = self._phases[self._k]
         status, reason = phase.tick(self, dt, self._t)
-        if status is Status.RUNNING and self.carrying and self.object and self.robot.gripper.holding() != self.object:
+        if status is Status.RUNNING and self.carrying and self.object and not self.robot.gripper.grasps():
             status, reason = Status.FAILED, f"{phase.name}: {self.object} slipped out of the hand"
+        elif status is Status.RUNNING and self.carrying and self.object and self.seen_elsewhere():
+            status, reason = Status.FAILED, f"{phase.name}: the {self.object} is not in the hand (seen away from it)"
         if status is Status.FAILED and phase.fallback is not None and self._failure is None:
             # end safely first, then report
             self._failure = Progress(Status.FAILED, phase.name, reason, self._t_total)

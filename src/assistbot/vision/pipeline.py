@@ -22,7 +22,7 @@ from dataclasses import dataclass
 import cv2
 import numpy as np
 
-from assistbot.cognition.percept import HandPercept, ObjectPercept, Percept
+from assistbot.cognition.percept import NOT_IN_HAND_XY, HandPercept, ObjectPercept, Percept
 from assistbot.task import OBJECT_STATES
 from assistbot.vision import library
 from assistbot.vision.capture import StereoFrame
@@ -47,6 +47,15 @@ def _in_robot_hand(d, tcp) -> bool:
         return False
     above = d.top - np.asarray(tcp, float)
     return bool(np.hypot(above[0], above[1]) < HELD_TOP_XY and HELD_TOP_Z[0] < above[2] < HELD_TOP_Z[1])
+
+
+def _seen_away_from(d, tcp) -> bool:
+    """The object the robot believes in its hand is seen, placed, farther than NOT_IN_HAND_XY from the
+    hand: the grasp closed on something else (the person's fingers), or the object stayed behind. The
+    percept then says where it is, not where the hand is."""
+    if tcp is None or not d.visible or d.position is None:
+        return False
+    return bool(np.hypot(d.position[0] - tcp[0], d.position[1] - tcp[1]) > NOT_IN_HAND_XY)
 
 
 def _norm(v: np.ndarray) -> float:
@@ -100,7 +109,7 @@ class Vision:
                 state, conf, state_seen = self._state(name, d, det.hand)
                 pos = tuple(round(float(v), 4) for v in d.position)
                 op = ObjectPercept(name, zone_of(pos[0]), state, pos, round(conf, 3), True, state_seen)
-            if robot_holding == name:
+            if robot_holding == name and not _seen_away_from(d, robot_tcp):
                 op.zone = "RWS"
                 if robot_tcp is not None:
                     op.position = tuple(float(v) for v in np.asarray(robot_tcp, float))
