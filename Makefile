@@ -40,7 +40,7 @@ test-all: $(STAMP)
 	$(BIN)/python -m pytest -q
 
 # The task space as a benchmark: 24 arrangements x 3 profiles x 3 seeds with vision (216 episodes,
-# two workers; about an hour on 2 cores), then its report. Resumes where it stopped.
+# two workers; about 75 min on 2 cores: 24 min a seed), then its report. Resumes where it stopped.
 WORKERS ?= 2
 matrix: $(STAMP)
 	$(BIN)/assistbot sweep scenarios/sweeps/matrix.yaml --workers $(WORKERS) --out render/sweeps/matrix
