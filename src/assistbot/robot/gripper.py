@@ -30,6 +30,9 @@ TOUCH_SENSORS = {
 #: N on a part for it to count as pressing, and in all for a grasp
 PRESS_N = 0.05
 GRASP_N = 0.5
+#: rad: closing on nothing, each finger stops with its tip on the palm at about 1.18 rad, where the skin
+#: feels the hand itself (tests/test_robot_gripper.py); all fingers past this angle hold nothing
+EMPTY_CLOSED = 1.1
 OPEN = GRIPPER_OPEN      # fingers splayed: the widest opening (the glass, 80 mm, fits)
 CLOSED = GRIPPER_CLOSED  # beyond any grasp: the torque limit bounds the squeeze
 
@@ -70,7 +73,10 @@ class Gripper:
         return {part: float(sd[adr].sum()) for part, adr in self._touch.items()}
 
     def grasps(self) -> bool:
-        """The hand holds something: two fingers press on it, or a finger and the palm opposite."""
+        """The hand holds something: two fingers press on it, or a finger and the palm opposite, and the
+        fingers have not all closed onto the palm (the skin also feels the hand touching itself)."""
+        if self.fully_closed():
+            return False
         p = self.pressure()
         fingers = sum(p[f] > PRESS_N for f in ("f1", "f2", "f3"))
         return (fingers >= 2 or (fingers >= 1 and p["palm"] > PRESS_N)) and sum(p.values()) > GRASP_N
@@ -80,5 +86,5 @@ class Gripper:
         return self.data.sensordata[self._wrist].copy()
 
     def fully_closed(self) -> bool:
-        """True when the fingers closed on nothing (all near the end of their range)."""
-        return bool(np.all(self.finger_angles() > CLOSED - 0.25))
+        """True when the fingers closed on nothing (all curled onto the palm)."""
+        return bool(np.all(self.finger_angles() > EMPTY_CLOSED))
