@@ -1,0 +1,41 @@
+"""Arrangement-profile pairs of the task space that failed when the task-space issue was filed and drink
+now (vision, the default policies, seed 1 as in `make matrix`): each must drink, spilling under 10 %.
+The other two pairs named there (the closed bottle and the inverted glass both on the person's side,
+active and passive) still fail; the README's task-space figures say so."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import pytest
+import yaml
+
+from assistbot.episode import run_scenario
+from assistbot.scenario import parse_scenario
+
+pytestmark = pytest.mark.slow
+BASE = Path(__file__).resolve().parents[1] / "scenarios" / "sweeps" / "matrix-base.yaml"
+
+PAIRS = [
+    ("active", "HWS:open", "HWS:empty"),
+    ("active", "HWS:closed", "RWS:full"),
+    ("active", "HWS:open", "RWS:inverted"),
+    ("passive", "HWS:closed", "HWS:empty"),
+]
+
+
+def _episode(profile: str, bottle: str, glass: str):
+    data = yaml.safe_load(BASE.read_text())
+    for name, spec in (("bottle", bottle), ("glass", glass)):
+        zone, state = spec.split(":")
+        data["objects"][name] = {"zone": zone, "state": state}
+    data["human"]["profile"] = profile
+    return run_scenario(parse_scenario(data, BASE), perception="vision", video=False)
+
+
+@pytest.mark.parametrize("profile, bottle, glass", PAIRS, ids=lambda v: v)
+def test_the_pair_drinks(profile, bottle, glass):
+    r = _episode(profile, bottle, glass)
+    assert r.success and r.end_reason == "drink", (r.end_reason, [a for _, a in r.decisions])
+    assert r.spilled_fraction < 0.1
+
