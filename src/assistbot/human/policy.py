@@ -14,10 +14,8 @@ from assistbot.world.layout import HANDOVER_ZONE_X
 #: behaviours that a robot's utterance does not interrupt (the hand is busy with an object)
 UNINTERRUPTIBLE = ("pull_stopper", "drink", "put_down", "turn_glass", "pour", "take_from_robot", "hand_to_robot")
 #: ... but for a request that goes on with what the hand holds: asked to set down what it holds out,
-#: or told to drink from the full glass it is handing over
+#: or told to drink (from the full glass it is handing over; anything else it puts down first)
 CONTINUES = {"hand_to_robot": ("put_down_for_robot", "drink")}
-
-
 
 
 def _scene(c) -> dict:
