@@ -38,6 +38,7 @@ sensors can tell.
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, field
 
 from assistbot.task import HAND_POSTURES, OBJECT_STATES, OBJECTS, ZONES
@@ -46,6 +47,11 @@ ROBOT_STATUSES = ("idle", "running", "finished", "failed")
 #: m: the object the robot holds is placed at its hand, unless it is seen farther than this from the hand
 #: (horizontally): then where it is seen (the grasp closed on something else, or the object stayed behind)
 NOT_IN_HAND_XY = 0.10
+
+
+def away_from_hand(position, tcp) -> bool:
+    """An object seen at ``position`` is not in the robot's hand at ``tcp`` (both table x, y first)."""
+    return math.hypot(position[0] - tcp[0], position[1] - tcp[1]) > NOT_IN_HAND_XY
 
 
 @dataclass

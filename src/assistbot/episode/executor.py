@@ -9,10 +9,9 @@ cognition learns that its decision was carried out.
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass
 
-from assistbot.cognition.percept import NOT_IN_HAND_XY, Percept
+from assistbot.cognition.percept import Percept, away_from_hand
 from assistbot.robot.actions import ACTION_PRIMITIVES
 from assistbot.robot.controller import RobotController
 from assistbot.robot.primitives import Status
@@ -144,8 +143,7 @@ class RobotExecutor:
         the robot's hand at the hand unless it sees it elsewhere) for AWAY_SECONDS."""
         p, obj = self._percept, self._in_hand
         o = p.objects.get(obj) if p is not None and obj else None
-        tcp = self.robot.tcp_pose().translation()
-        away = bool(o is not None and o.seen and math.hypot(o.position[0] - tcp[0], o.position[1] - tcp[1]) > NOT_IN_HAND_XY)
+        away = bool(o is not None and o.seen and away_from_hand(o.position, self.robot.tcp_pose().translation()))
         if not away:
             self._away_since = None
             return False

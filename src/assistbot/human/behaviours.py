@@ -16,6 +16,7 @@ from typing import Callable, Generator
 import numpy as np
 
 from assistbot.human.arm import SHOULDER_XY, grip_orientation, rot_y, rot_z
+from assistbot.human.perception import RobotView
 from assistbot.world import layout
 from assistbot.world.state import standing_end
 
@@ -36,10 +37,11 @@ MEET_TRIES = 3
 MEET_PATIENCE = 12.0
 #: N: an object pressing back in the person's grip this hard has met something (the robot's hand)
 FEEL_FORCE = 6.0
-#: the robot's hand held out still this long (s), within STILL_TOLERANCE (m), before the person reaches
-#: for what it offers; a grip that gives way before the robot has let go is taken again, TAKE_TRIES in all
-OFFER_STILL = 0.5
+#: m: the robot's hand moving less than this is still, as the person sees it
 STILL_TOLERANCE = 0.01
+#: the robot's hand held out still this long (s) before the person reaches for what it offers; a grip that
+#: gives way before the robot has let go is taken again, TAKE_TRIES in all
+OFFER_STILL = 0.5
 TAKE_TRIES = 2
 #: the hand's height (world z) while it holds an object just taken from the robot, in toward the body
 TAKEN_Z = 0.90
@@ -341,18 +343,9 @@ def put_down_for_robot(c) -> Gen:
     if held not in layout.OBJECT_HEIGHT:
         return False, "nothing in hand to set down"
     # the robot's open hand comes to show the place: wait until it is held out there, still
-    last, since = None, None
-    t_end = c.t + 15.0
-    while True:
-        v = c.view
-        tcp = np.array(v.hand_pos, float)
-        if not v.requests or last is None or np.linalg.norm(tcp - last) > 0.01:
-            last, since = (tcp if v.requests else None), c.t
-        elif c.t - since >= MEET_STILL:
-            break
-        if c.t >= t_end:
-            return False, "the robot showed no place"
-        yield
+    tcp = yield from _robot_hand_still(c, lambda v: v.requests, MEET_STILL, 15.0)
+    if tcp is None:
+        return False, "the robot showed no place"
     return (yield from put_down(c, held, at=(min(float(tcp[0]), UNDER_ROBOT_X_MAX), float(tcp[1]))))
 
 
@@ -375,21 +368,29 @@ def hand_to_robot(c, object: str, grip: str | None = None, timeout: float = 40.0
     return ok, f"{object} handed over"
 
 
+def _robot_hand_still(c, showing: Callable[[RobotView], bool], seconds: float,
+                      timeout: float) -> Generator[None, None, np.ndarray | None]:
+    """Wait until the robot's hand, ``showing(view)`` all along, has kept still (within STILL_TOLERANCE)
+    for ``seconds``: where it is then, or None after ``timeout`` s."""
+    t_end = c.t + timeout
+    last, since = None, None
+    while True:
+        v = c.view
+        tcp = np.array(v.hand_pos, float)
+        if not showing(v) or last is None or np.linalg.norm(tcp - last) > STILL_TOLERANCE:
+            last, since = (tcp if showing(v) else None), c.t
+        elif c.t - since >= seconds:
+            return tcp
+        if c.t >= t_end:
+            return None
+        yield
+
+
 def _offered_still(c, object: str | None, timeout: float) -> Generator[None, None, bool]:
     """Wait until the robot holds ``object`` (any, when None) out and its hand has kept still for
     OFFER_STILL s: a person reaches for a thing handed to them once it has arrived, not while it moves."""
-    t_end = c.t + timeout
-    anchor, since = None, c.t
-    while True:
-        offered = c.view.offers is not None and (object is None or c.view.offers == object)
-        here = np.array(c.view.hand_pos)
-        if not offered or anchor is None or np.linalg.norm(here - anchor) > STILL_TOLERANCE:
-            anchor, since = here, c.t
-        elif c.t - since >= OFFER_STILL:
-            return True
-        if c.t >= t_end:
-            return False
-        yield
+    offered = lambda v: v.offers is not None and (object is None or v.offers == object)  # noqa: E731
+    return (yield from _robot_hand_still(c, offered, OFFER_STILL, timeout)) is not None
 
 
 def take_from_robot(c, object: str | None = None, timeout: float = 20.0) -> Gen:

@@ -22,7 +22,7 @@ from dataclasses import dataclass
 import cv2
 import numpy as np
 
-from assistbot.cognition.percept import NOT_IN_HAND_XY, HandPercept, ObjectPercept, Percept
+from assistbot.cognition.percept import HandPercept, ObjectPercept, Percept, away_from_hand
 from assistbot.task import OBJECT_STATES
 from assistbot.vision import library
 from assistbot.vision.capture import StereoFrame
@@ -50,12 +50,12 @@ def _in_robot_hand(d, tcp) -> bool:
 
 
 def _seen_away_from(d, tcp) -> bool:
-    """The object the robot believes in its hand is seen, placed, farther than NOT_IN_HAND_XY from the
-    hand: the grasp closed on something else (the person's fingers), or the object stayed behind. The
-    percept then says where it is, not where the hand is."""
+    """The object the robot believes in its hand is seen, placed, away from the hand (`away_from_hand`):
+    the grasp closed on something else (the person's fingers), or the object stayed behind. The percept
+    then says where it is, not where the hand is."""
     if tcp is None or not d.visible or d.position is None:
         return False
-    return bool(np.hypot(d.position[0] - tcp[0], d.position[1] - tcp[1]) > NOT_IN_HAND_XY)
+    return away_from_hand(d.position, tcp)
 
 
 def _norm(v: np.ndarray) -> float:
