@@ -31,6 +31,8 @@ OPEN_HAND_MEMORY = 30.0
 STANDING_Z = 0.03
 #: s for which what the hand believes it holds must be seen away from the hand before the grasp counts as lost
 AWAY_SECONDS = 1.0
+#: s for which the person's hand, seen, has held nothing out before the robot stops reaching for it
+WITHDRAWN_SECONDS = 1.0
 
 
 @dataclass
@@ -64,6 +66,7 @@ class RobotExecutor:
         self._held_out_name: str | None = None  # what the person was last seen holding, during this action
         self._away_since: float | None = None   # since when what the hand believes it holds is seen elsewhere
         self._lost = False                       # ... long enough: this action's grasp is not of it
+        self._offer_seen_at = 0.0   # last t the person's hand was seen holding something out, or not seen
 
     # -- what the robot knows of its own body ------------------------------------------------
     def holding(self) -> str | None:
@@ -138,6 +141,13 @@ class RobotExecutor:
         # low, and a grasp too low cannot set the object down again (the palm meets the table first)
         return max(seen) if seen else None
 
+    def _offered(self) -> bool:
+        """The person still holds something out: the hand has not been seen doing anything else (pouring,
+        drinking, resting) for WITHDRAWN_SECONDS. A hand hidden (often by the robot's own arm) is given
+        the benefit of the doubt."""
+        p = self._percept
+        return p is None or p.t - self._offer_seen_at < WITHDRAWN_SECONDS
+
     def _seen_elsewhere(self) -> bool:
         """What the hand believes it holds has been seen away from the hand (vision places an object in
         the robot's hand at the hand unless it sees it elsewhere) for AWAY_SECONDS."""
@@ -201,7 +211,8 @@ class RobotExecutor:
         self.primitive = cls(self.robot, obj, human_holds=lambda: self._human_holds(aim or self.primitive.object),
                              locate=self._locate, stopper_removed=self._stopper_removed,
                              lifted=lambda: self._lifted(aim), partner_hand=self._partner_hand,
-                             identify=lambda: self._held_out_name, seen_elsewhere=self._seen_elsewhere)
+                             identify=lambda: self._held_out_name, seen_elsewhere=self._seen_elsewhere,
+                             offered=self._offered)
         # hidden right now (often behind the robot's own arm): start from where it was last seen;
         # the gaze goes there and the target field takes over once the cameras see it again
         self.primitive.start(self._locate(aim))
@@ -213,6 +224,8 @@ class RobotExecutor:
             self._open_hand = (percept.t, tuple(float(v) for v in h.position))
         if h.seen and h.object_in_hand:
             self._held_out_name = h.object_in_hand
+        if not h.seen or (h.held_out and h.object_in_hand):
+            self._offer_seen_at = percept.t
         held = percept.objects.get(h.object_in_hand) if h.seen and h.object_in_hand else None
         if held is not None and held.seen:
             self._held_out_seen = True

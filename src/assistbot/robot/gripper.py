@@ -37,6 +37,17 @@ OPEN = GRIPPER_OPEN      # fingers splayed: the widest opening (the glass, 80 mm
 CLOSED = GRIPPER_CLOSED  # beyond any grasp: the torque limit bounds the squeeze
 
 
+def hand_extent(model: mujoco.MjModel) -> tuple[float, float]:
+    """How far (m) the hand reaches above and below its TCP in a side grasp (the hand's z up), from the
+    MJCF: the upper finger's outer edge (finger 1's base and its link's radius) and the palm's lower edge.
+    What it grasps from the side lies between the two: the fingers close around nothing above the first."""
+    tcp_z = float(model.site_pos[model.site("robot_tcp").id][2])
+    above = float(model.body_pos[model.body("robot_f1_base").id][2] + model.geom_size[model.geom("robot_f1_prox").id][0])
+    palm = model.geom("robot_palm").id
+    below = float(model.geom_size[palm][2] - model.geom_pos[palm][2])
+    return above - tcp_z, below + tcp_z
+
+
 class Gripper:
     def __init__(self, model: mujoco.MjModel, data: mujoco.MjData) -> None:
         self.model, self.data = model, data
@@ -47,6 +58,7 @@ class Gripper:
         self.command = OPEN
         ws = model.sensor("robot_wrist_force")
         self._wrist = slice(int(ws.adr[0]), int(ws.adr[0]) + 3)
+        self.reach_above, self.reach_below = hand_extent(model)
 
     def open(self, amount: float = 1.0) -> None:
         """Open the fingers (amount 1: fully; 0.5: half way to closed)."""

@@ -44,11 +44,11 @@ import numpy as np
 
 from assistbot.robot import poses
 from assistbot.robot.controller import REACH, TCP_MIN_X, RobotController
-from assistbot.robot.gripper import PRESS_N
+from assistbot.robot.gripper import PRESS_N, Gripper
 from assistbot.robot.placement import put_down_spot, segment_distance, shared_spot
 from assistbot.robot.target_field import TargetField
 from assistbot.task import OBJECTS
-from assistbot.world.layout import OBJECT_HEIGHT, OBJECT_RADIUS, STOPPER_HEIGHT, TABLE_Z
+from assistbot.world.layout import BOTTLE_BODY_TOP, OBJECT_HEIGHT, OBJECT_RADIUS, STOPPER_HEIGHT, TABLE_Z
 
 UNREACHABLE_PATIENCE = 0.3  # s in all that a Move's target may be out of reach before the move fails (3 perception ticks)
 REACH_WAIT = 12.0           # s a reaching-out move waits for its goal to come within reach
@@ -312,7 +312,8 @@ class Primitive:
                  lifted: Callable[[], float | None] | None = None,
                  partner_hand: Callable[[], tuple[float, float, float] | None] | None = None,
                  identify: Callable[[], str | None] | None = None,
-                 seen_elsewhere: Callable[[], bool] | None = None) -> None:
+                 seen_elsewhere: Callable[[], bool] | None = None,
+                 offered: Callable[[], bool] | None = None) -> None:
         """``obj``: the object acted on ("bottle", "glass", "held_out" for whatever the human holds out).
 
         Callbacks (all from perception, never from the physics' ground truth):
@@ -328,6 +329,8 @@ class Primitive:
                              what a grasp of "held_out" closed on (the hand feels only that it holds).
           seen_elsewhere()   True when the cameras have kept seeing the object the hand believes it
                              carries away from the hand: the grasp closed on something else.
+          offered()          True while the person still holds the object out (not seen doing something
+                             else with it, e.g. pouring); without perception: True.
         """
         self.robot = robot
         self.object = obj
@@ -339,6 +342,7 @@ class Primitive:
         self.partner_hand = partner_hand or (lambda: None)
         self.identify = identify or (lambda: None)
         self.seen_elsewhere = seen_elsewhere or (lambda: False)
+        self.offered = offered or (lambda: True)
         self._offer: np.ndarray | None = None
         self._failure: Progress | None = None    # a failure being ended safely (Phase.fallback)
         self.released: tuple[str, tuple[float, float]] | None = None  # the object let go of last, and where
@@ -478,13 +482,25 @@ OFFER_BASE = (0.05, 0.12)
 SET_DOWN_ABOVE = 0.025
 #: m by which what the robot carries passes over the objects standing in its way
 CARRY_CLEARANCE = 0.03
+#: s the hand waits beside the person's before reaching in, for them to hold the object out again
+OFFER_PATIENCE = 4.0
 #: the height (m above the table) assumed for the base of an object held up by the person until it is seen
 LIFT_GUESS = 0.10
 #: time constant (s) over which the perceived height of a held-up object is followed
 LIFT_TAU = 0.2
-#: m higher than the usual grasp height that an object held up by the person is grasped: its height is
-#: seen less well there, and one grasped too low cannot be set down (the palm meets the table first)
-HELD_GRASP_MARGIN = 0.015
+#: the top of each object's side wall, where a side grasp's upper finger must stay below (m above the base):
+#: the glass's rim, the bottle's shoulder
+WALL_TOP = {"glass": OBJECT_HEIGHT["glass"], "bottle": BOTTLE_BODY_TOP}
+
+
+def held_grasp_height(obj: str, hand: "Gripper") -> float:
+    """Grasp height (m above the base) of an object held up by the person: the middle of the band in
+    which the whole hand lies along the object's wall (palm above the base, upper finger below the
+    wall's top), since the base is seen only to a cm or two there. The glass's band is 2 cm wide: its
+    rim lies 10 cm up, and a finger above it curls over the top onto the palm (and, opened, catches
+    inside the glass). Unknown which object ("held_out"): the band both share."""
+    top = WALL_TOP[obj] if obj in WALL_TOP else min(WALL_TOP.values())
+    return 0.5 * (hand.reach_below + top - hand.reach_above)
 
 
 def _point(prim: Primitive, z: float) -> np.ndarray:
@@ -512,8 +528,13 @@ def _side_grasp_pose(prim: Primitive, back: float = 0.0, up: float = 0.0, roll: 
     person at the height perception gives (`Primitive.base_z`)."""
     obj = prim.object or "glass"
     x, y = prim.xy()
-    base_z = prim.base_z() + HELD_GRASP_MARGIN if held_up else TABLE_Z
-    c = np.array([x, y, base_z + (height if height is not None else GRASP_HEIGHT.get(obj, 0.06)) + up])
+    if held_up:
+        # which object the person holds out, as seen, for where the hand fits on it
+        seen = prim.identify() if obj == "held_out" else obj
+        base_z, h = prim.base_z(), held_grasp_height(seen or obj, prim.robot.gripper)
+    else:
+        base_z, h = TABLE_Z, GRASP_HEIGHT.get(obj, GRASP_HEIGHT["held_out"])
+    c = np.array([x, y, base_z + (height if height is not None else h) + up])
     return _grasp_pose_at(prim, c, obj, back, roll)
 
 
@@ -1152,7 +1173,13 @@ class Receive(Primitive):
         return self.spot
 
     def phases(self):
-        return _reach_and_grasp(self, held_up=True) + [
+        reach = _reach_and_grasp(self, held_up=True)
+        # from the pre-grasp on, the hand closes in on the person's: only while they still hold it out
+        # (a hand lifting the bottle to pour passes through the hand-over zone, and may pause there)
+        k = next(i for i, ph in enumerate(reach) if ph.name == "approach")
+        reach.insert(k, WaitFor("wait while it is held out", lambda p: p.offered(), OFFER_PATIENCE,
+                                "the person did not hold it out"))
+        return reach + [
             Wait("hold", 1.5),  # the human feels the robot's grip before letting go
             WaitFor("wait for the human to let go", lambda p: not p.human_holds(), self.timeout,
                     "the human did not let go"),
