@@ -9,6 +9,7 @@ cognition learns that its decision was carried out.
 
 from __future__ import annotations
 
+from collections import deque
 from dataclasses import dataclass
 
 from assistbot.cognition.percept import Percept, away_from_hand
@@ -31,8 +32,10 @@ OPEN_HAND_MEMORY = 30.0
 STANDING_Z = 0.03
 #: s for which what the hand believes it holds must be seen away from the hand before the grasp counts as lost
 AWAY_SECONDS = 1.0
-#: s for which the person's hand, seen, has held nothing out before the robot stops reaching for it
-WITHDRAWN_SECONDS = 1.0
+#: s over which the frames showing the person's hand must mostly show it held out for the robot to reach
+#: in for what it holds (the posture of a hand held still flickers between classes from frame to frame;
+#: a hand passing through the hand-over zone, to pour say, is seen held out in a frame or two)
+OFFER_WINDOW = 1.0
 
 
 @dataclass
@@ -66,7 +69,7 @@ class RobotExecutor:
         self._held_out_name: str | None = None  # what the person was last seen holding, during this action
         self._away_since: float | None = None   # since when what the hand believes it holds is seen elsewhere
         self._lost = False                       # ... long enough: this action's grasp is not of it
-        self._offer_seen_at = 0.0   # last t the person's hand was seen holding something out, or not seen
+        self._hand_out: deque[tuple[float, bool]] = deque()   # (t, held out) of the frames showing the hand
 
     # -- what the robot knows of its own body ------------------------------------------------
     def holding(self) -> str | None:
@@ -142,11 +145,12 @@ class RobotExecutor:
         return max(seen) if seen else None
 
     def _offered(self) -> bool:
-        """The person still holds something out: the hand has not been seen doing anything else (pouring,
-        drinking, resting) for WITHDRAWN_SECONDS. A hand hidden (often by the robot's own arm) is given
-        the benefit of the doubt."""
-        p = self._percept
-        return p is None or p.t - self._offer_seen_at < WITHDRAWN_SECONDS
+        """The person holds something out: at least half the frames of the last OFFER_WINDOW that show the
+        hand show it held out. A hand not seen at all (often hidden by the robot's own arm) is given the
+        benefit of the doubt."""
+        if not self._hand_out:
+            return True
+        return 2 * sum(out for _, out in self._hand_out) >= len(self._hand_out)
 
     def _seen_elsewhere(self) -> bool:
         """What the hand believes it holds has been seen away from the hand (vision places an object in
@@ -224,8 +228,10 @@ class RobotExecutor:
             self._open_hand = (percept.t, tuple(float(v) for v in h.position))
         if h.seen and h.object_in_hand:
             self._held_out_name = h.object_in_hand
-        if not h.seen or (h.held_out and h.object_in_hand):
-            self._offer_seen_at = percept.t
+        if h.seen:   # held out with or without what it holds in view (the hand, or the robot's arm, hides it)
+            self._hand_out.append((percept.t, bool(h.held_out)))
+        while self._hand_out and self._hand_out[0][0] <= percept.t - OFFER_WINDOW:
+            self._hand_out.popleft()
         held = percept.objects.get(h.object_in_hand) if h.seen and h.object_in_hand else None
         if held is not None and held.seen:
             self._held_out_seen = True

@@ -1095,6 +1095,17 @@ class Pour(Primitive):
             self._glass = np.asarray(g, float)
         else:
             self._glass = self.glass_xy
+        self._tilt_k = next(i for i, ph in enumerate(self._phases) if ph.name == "tilt")
+
+    def tick(self, dt: float, target_xy=None) -> Progress:
+        # where the glass is, as seen, until the bottle tilts over it: at the start it may be hidden (behind
+        # the arm) and known only from where the robot set it down, which is off by the offset at which the
+        # hand held it
+        if self.glass_xy is None and self.progress.status is Status.RUNNING and self._k < self._tilt_k:
+            g = self.locate("glass")
+            if g is not None:
+                self._glass = np.asarray(g, float)
+        return super().tick(dt, target_xy)
 
     def _pour_pose(self, tilt: float) -> mink.SE3:
         """TCP pose holding the bottle rolled by ``tilt`` with the mouth, at the full tilt, over the glass centre."""
