@@ -8,7 +8,7 @@ import mujoco
 import numpy as np
 import pytest
 
-from assistbot.episode.judge import FALLEN_SECONDS, REPEAT_DECISIONS, REPEAT_FAILURES, STALL_SECONDS, Judge
+from assistbot.episode.judge import FALLEN_SECONDS, NOTICE_SECONDS, REPEAT_DECISIONS, REPEAT_FAILURES, STALL_SECONDS, Judge
 from assistbot.episode.touch import TouchMonitor
 from assistbot.world import Arrangement, build_world
 
@@ -73,10 +73,24 @@ def test_a_bottle_tipped_over_ends_the_episode_naming_it_and_the_glass_standing_
     b = w.body_id["bottle"]
     # a twist about the table's x axis for a moment: the bottle tips over and lies on the table
     tip = lambda: w.data.xfrc_applied.__setitem__((b, 3), 0.25 if w.time < 0.25 else 0.0)  # noqa: E731
-    assert run(w, j, 4.0, each=tip) == "object fell"
+    # the episode runs on for the robot to see the fall and say so ...
+    assert run(w, j, 4.0, each=tip) is None
     assert abs(w.data.xmat[b][8]) < 0.5          # it does lie on its side
-    assert j.end_reason() == "object fell: bottle" and j.detail == {"object": "bottle"}
     assert j.fallen() == ["bottle"]
+    j.said(w.time, "error:glass_fell")           # (what fell is not the glass)
+    assert j.verdict(w.time) is None
+    j.said(w.time, "error:bottle_fell")
+    assert j.verdict(w.time) == "object fell"
+    assert j.end_reason() == "object fell: bottle" and j.detail == {"object": "bottle", "robot_said": True}
+
+
+def test_a_fall_the_robot_does_not_say_ends_the_episode_after_its_notice_time():
+    w = world("RWS:closed@0.15,0.15", "RWS:empty@0.2,-0.15")
+    j = Judge(w, time_limit=100.0)
+    b = w.body_id["bottle"]
+    tip = lambda: w.data.xfrc_applied.__setitem__((b, 3), 0.25 if w.time < 0.25 else 0.0)  # noqa: E731
+    assert run(w, j, 1.0 + FALLEN_SECONDS + NOTICE_SECONDS, each=tip) == "object fell"
+    assert j.detail == {"object": "bottle", "robot_said": False}
 
 
 def test_an_inverted_glass_is_standing_not_fallen():

@@ -118,6 +118,7 @@ class Cognition:
         self._state_out_of_view: dict[str, str | None] = {}   # object -> state remembered when it went out of view
         self._failures: dict[str, float] = {}   # motion action -> time of its last reported failure (AFL input)
         self._pulses: dict[str, float] = {}     # AML mismatch -> time of the last failure report pulsing it
+        self._lying_since: dict[str, float] = {}  # object -> since when it has been seen lying
         self._cleared: dict[str, float] = {}    # motion action -> time its failure memory was cleared
         self._pending: list[Said] = []
         self._new = False
@@ -169,6 +170,15 @@ class Cognition:
                     else:
                         amp = s["oml_against"] * conf
                     net.set_stimulus("OML", item, amp)
+        # AML: an object seen lying on its side, once seen so for fallen_after s
+        for obj, item in task.FALLS.items():
+            o = percept.objects.get(obj)
+            if o is not None and o.lying:
+                self._lying_since.setdefault(obj, percept.t)
+            else:
+                self._lying_since.pop(obj, None)
+            fell = obj in self._lying_since and percept.t - self._lying_since[obj] >= float(s["fallen_after"]) - 1e-9
+            net.set_stimulus("AML", item, float(s["fallen"]) if fell else 0.0)
         if self._habituation:
             self._apply_release_inputs()
         r = percept.robot

@@ -144,6 +144,9 @@ def default_config() -> dict[str, Any]:
             "failure_pulse": 2.0, "pulse_seconds": 1.5,
             "success_clears": -20.0,  # into AFL at an action that finished (for report_seconds): its failure is past
             "forget_after": 90.0,     # s after its last failure an action's memory is let go
+            # an object seen lying on its side, into AML at its fall once seen so for fallen_after s (a
+            # misread frame, or a tipping object that rights itself, is not a fall)
+            "fallen": 5.0, "fallen_after": 1.0,
             # task drive of the present sub-goals: open before turn (priority), fill and hand-over only when enabled
             "present_drive": {"Open-bottle": 3.8, "Turn-glass": 3.5, "Fill-glass": 1.7, "Hand-over-full-glass": 1.7},
             "future_drive": 4.0,

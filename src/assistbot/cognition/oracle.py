@@ -23,7 +23,7 @@ from assistbot.cognition.percept import HandPercept, ObjectPercept, Percept, Rob
 
 ORACLE_LABEL = "oracle perception (ground truth, not vision)"
 
-OBJECT_KEYS = ("zone", "state", "position", "seen", "confidence")
+OBJECT_KEYS = ("zone", "state", "position", "seen", "confidence", "lying")
 HAND_KEYS = ("posture", "object_in_hand", "held_out", "directed_at", "pointed_at", "position", "seen", "confidence")
 ROBOT_KEYS = ("holding", "action", "status")
 
@@ -50,6 +50,7 @@ def oracle_percept(t: float, truth: Mapping[str, Mapping[str, Any]]) -> Percept:
         objects[obj] = ObjectPercept(
             type=obj, zone=d.get("zone", "HWS"), state=d.get("state", task.OBJECT_STATES[obj][0]),
             position=_pos(d.get("position")), confidence=float(d.get("confidence", 1.0)), seen=bool(d.get("seen", True)),
+            lying=bool(d.get("lying", False)),
         )
     hd = truth.get("hand", {}) or {}
     hand = HandPercept(

@@ -56,7 +56,7 @@ def away_from_hand(position, tcp) -> bool:
 
 @dataclass
 class ObjectPercept:
-    """One object as seen: type, zone, state, position (m, table frame), confidence, seen.
+    """One object as seen: type, zone, state, position (m, table frame), confidence, seen, lying.
 
     ``state_seen`` False: the object is seen but its state is not (the bottle's stopper under the
     person's hand); ``state`` is then only a guess, and cognition keeps the state it remembers."""
@@ -68,6 +68,7 @@ class ObjectPercept:
     confidence: float = 1.0
     seen: bool = True
     state_seen: bool = True
+    lying: bool = False      # seen on its side (fallen over): then not ``seen`` as standing, ``position`` roughly
 
     def validate(self) -> None:
         if self.type not in OBJECTS:

@@ -44,6 +44,7 @@ _ALLOWED: dict[tuple[str, str], tuple] = {
     ("hand", "pointed_at"): (None, *task.OBJECTS),
     ("hand", "held_out"): (True, False),
     ("hand", "seen"): (True, False),
+    **{(o, "lying"): (True, False) for o in task.OBJECTS},
     ("robot", "holding"): (None, *task.OBJECTS),
     ("robot", "status"): ROBOT_STATUSES,
     ("robot", "action"): (None, *task.AEL_ITEMS),

@@ -8,7 +8,9 @@ person. `end_reason` is one of END_REASONS, "object fell" naming the object:
   stalled      no decision and no robot motion for STALL_SECONDS
   repeating    the same action failed REPEAT_FAILURES times, or was decided REPEAT_DECISIONS times
                in a row (an action that cannot fail, such as Wait, repeated without end)
-  object fell  the bottle or the glass lies on its side, or fell off the table, and stays there
+  object fell  the bottle or the glass lies on its side, or fell off the table, and stays there; the
+               episode runs on until the robot says it cannot go on (it must see the fall itself), at
+               most NOTICE_SECONDS, and ``robot_said`` records whether it did
   diverged     the physics produced NaN or an unstable acceleration
   time limit   the scenario's time ran out
 """
@@ -21,6 +23,7 @@ from collections import Counter
 import mujoco
 import numpy as np
 
+from assistbot import task
 from assistbot.world import layout
 
 END_REASONS = ("drink", "stalled", "repeating", "object fell", "diverged", "time limit")
@@ -31,6 +34,10 @@ REPEAT_DECISIONS = 5
 FALLEN_TILT = math.radians(60)
 #: it must stay so, untouched by either partner, this long (s): a tipping object may right itself
 FALLEN_SECONDS = 1.0
+#: s after that for the robot to say that it cannot go on (vision sees the object lie, `task.FALLS`)
+NOTICE_SECONDS = 5.0
+#: the robot's utterance that an object fell -> the object
+FALL_TAGS = {task.UTTERANCES["AML"][item].tag: obj for obj, item in task.FALLS.items()}
 #: robot joint speed (rad/s) above which the robot counts as moving
 MOVING_SPEED = 0.05
 #: the objects whose fall ends the task (the stopper, once off, is set aside and not needed)
@@ -51,6 +58,7 @@ class Judge:
         self._failures: Counter[str] = Counter()
         self._run: list[str] = []           # the decisions since the last different one
         self._lying_since: dict[str, float] = {}
+        self._said_fell: set[str] = set()   # the objects the robot has said fell over
         self.reason: str | None = None
         self.detail: dict = {}
 
@@ -60,6 +68,11 @@ class Judge:
         self._run = (self._run if self._run and self._run[-1] == action else []) + [action]
         if len(self._run) >= REPEAT_DECISIONS:
             self._end("repeating", action=action, decided_in_a_row=len(self._run))
+
+    def said(self, t: float, tag: str) -> None:
+        """The robot said something (its utterance's tag)."""
+        if tag in FALL_TAGS:
+            self._said_fell.add(FALL_TAGS[tag])
 
     def action_ended(self, t: float, action: str, status: str, reason: str = "") -> None:
         self._last_activity = t
@@ -100,8 +113,9 @@ class Judge:
             lying = set(self.fallen())
             self._lying_since = {o: self._lying_since.get(o, t) for o in lying}
             for o, t0 in self._lying_since.items():
-                if t - t0 >= FALLEN_SECONDS:
-                    self._end("object fell", object=o)
+                said = o in self._said_fell
+                if t - t0 >= FALLEN_SECONDS and (said or t - t0 >= FALLEN_SECONDS + NOTICE_SECONDS):
+                    self._end("object fell", object=o, robot_said=said)
         if self.reason is None:
             if np.abs(d.qvel[self._robot_dofs]).max() > MOVING_SPEED:
                 self._last_activity = t

@@ -70,6 +70,8 @@ class OraclePerception:
                 "zone": o.zone,
                 "state": s.bottle_state if name == "bottle" else s.glass_state,
                 "position": [float(pos[0]), float(pos[1]), float(pos[2] - tz)],
+                # on its side on the table, in no one's hand
+                "lying": bool(not (o.upright or o.inverted) and o.held_by is None),
             }
         return oracle_percept(t, truth)
 

@@ -237,6 +237,7 @@ class Episode:
             for u in decision.utterances:
                 self.speech.say(u.t, u.text, u.tag, f"{u.layer}:{u.item}")
                 self.human.hear(u.tag, u.t)
+                self.judge.said(u.t, u.tag)
                 self.log.append({"t": round(u.t, 3), "kind": "say", "layer": u.layer, "item": u.item, "text": u.text, "tag": u.tag})
             if decision.released:
                 self.log.append({"t": round(t, 3), "kind": "release", "action": decision.released})

@@ -32,6 +32,7 @@ from assistbot.task.drinking import (
     SUBGOALS,
     ACHIEVED_BY,
     ACTION_FAILURES,
+    FALLS,
     AGAINST_REQUIREMENT,
     TAG_RESPONSES,
     UTTERANCES,

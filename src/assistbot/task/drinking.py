@@ -227,7 +227,10 @@ ERRORS: tuple[Error, ...] = (
 #: Failing to take what the person holds out is its own mismatch (it has an alternative: Take-from-table);
 #: every other repeated failure is one mismatch, said as such, the action kept inhibited.
 ACTION_FAILURES: tuple[str, ...] = ("Cannot-take-it-from-the-hand", "Keeps-failing")
-AML_ITEMS: tuple[str, ...] = tuple(e.name for e in ERRORS) + ACTION_FAILURES
+#: An object seen lying on its side: neither partner can stand it up again here, so the task cannot go on.
+#: object -> its AML item (driven by the percept, `Cognition.perceive`; it drives no action).
+FALLS: dict[str, str] = {"bottle": "Bottle-fell-over", "glass": "Glass-fell-over"}
+AML_ITEMS: tuple[str, ...] = tuple(e.name for e in ERRORS) + ACTION_FAILURES + tuple(FALLS.values())
 
 # ---------------------------------------------------------------------------------------------
 # Robot actions (AEL)
@@ -428,6 +431,8 @@ UTTERANCES: dict[str, dict[str, Utterance]] = {
         Utterance("AML", "Drink-from-empty-glass", "The glass is empty.", "error:drink_empty_glass"),
         Utterance("AML", "Cannot-take-it-from-the-hand", "I cannot take it from your hand.", "error:cannot_take_it"),
         Utterance("AML", "Keeps-failing", "That did not work twice; I will try something else.", "error:keeps_failing"),
+        Utterance("AML", "Bottle-fell-over", "The bottle has fallen over: I cannot go on.", "error:bottle_fell"),
+        Utterance("AML", "Glass-fell-over", "The glass has fallen over: I cannot go on.", "error:glass_fell"),
     )},
     "AEL": {u.item: u for u in (
         # Communicate-Error speaks the message of the winning AML error; this text is its preface
