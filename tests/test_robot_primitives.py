@@ -282,6 +282,41 @@ def test_receive_takes_the_object_from_the_human_hand_and_puts_it_in_rws(obj, ar
     assert_safe(s)
 
 
+def test_receive_does_not_reach_in_while_the_person_is_not_holding_it_out():
+    """Seen doing something else with it (pouring, say): the hand waits beside the person's, then the
+    action fails with the reason; nothing is grasped and the object stays in the person's hand."""
+    w, robot = make("HWS:closed@-0.22,-0.12", "RWS:empty")
+    human = HumanController(w, "passive")
+    human.start("hand_to_robot", object="bottle", grip="ag")
+    while not (w.human_holding() == "bottle" and human.arm.arrived(w.time, 0.03)) and w.time < 10.0:
+        settle(w, CONTROL_DT, human)
+    hand = w.model.site("human_r_grasp").id
+    prim = P.Receive(robot, "bottle", human_holds=lambda: w.human_holding() is not None, lifted=body_lift(w, "bottle"),
+                     locate=lambda name: body_xy(w, name)(), offered=lambda: False)
+    pr, s = run(w, prim, lambda: tuple(w.data.site_xpos[hand][:2]), each_tick=human.tick)
+    assert pr.status is Status.FAILED and pr.phase == "wait while it is held out", (pr.phase, pr.reason)
+    assert "did not hold it out" in pr.reason
+    assert w.human_holding() == "bottle" and not robot.gripper.grasps()
+    assert_safe(s)
+
+
+@pytest.mark.parametrize("obj", ["glass", "bottle", "held_out"])
+def test_an_object_held_up_is_grasped_where_the_whole_hand_lies_on_its_wall(obj):
+    """The palm above the object's base and the upper finger below its wall's top (the glass's rim, the
+    bottle's shoulder), read from the MJCF: a finger above the rim curls over it."""
+    from assistbot.robot.gripper import hand_extent
+    w, _ = make("HWS:closed", "RWS:empty")
+    above, below = hand_extent(w.model)
+    assert 0.03 < above < 0.04 and 0.04 < below < 0.05
+    tops = [P.WALL_TOP[obj]] if obj in P.WALL_TOP else list(P.WALL_TOP.values())
+
+    class Hand:
+        reach_above, reach_below = above, below
+    h = P.held_grasp_height(obj, Hand)
+    for top in tops:
+        assert h - below >= 0.0 and h + above <= top, (obj, h, top)
+
+
 # --------------------------------------------------------------------------- request, retract, failures
 @pytest.mark.parametrize("target, arrangement, from_ready", [
     ((-0.20, -0.25), ("HWS:closed", "HWS:empty@-0.20,-0.25"), False),
