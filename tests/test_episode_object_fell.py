@@ -41,7 +41,7 @@ def test_a_bottle_that_falls_over_is_seen_lying_and_the_robot_says_it_cannot_go_
 
 @pytest.mark.slow
 def test_without_seeing_it_lie_the_robot_says_nothing_and_the_judge_ends_it_later(monkeypatch):
-    monkeypatch.setattr(detect, "LYING_TOP", 0.0)     # vision never reports an object lying
+    monkeypatch.setattr(detect, "LYING_TILT", 9.0)     # vision never reports an object lying
     ep, result, said = run(0.25)
     assert result.end_reason == "object fell: bottle" and result.end_detail["robot_said"] is False
     assert not said

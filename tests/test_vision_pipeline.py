@@ -489,3 +489,28 @@ def test_the_object_in_the_robots_hand_is_placed_at_the_hand_unless_seen_elsewhe
     tcp = np.array([0.20, 0.0, 0.08])
     d = ObjectDetection("bottle", seen_at is not None, None if seen_at is None else np.array(seen_at))
     assert _seen_away_from(d, tcp) == away
+
+
+@pytest.mark.parametrize("name", ["bottle", "glass"])
+def test_an_object_lying_on_its_side_is_reported_lying_and_standing_ones_are_not(name):
+    """Lying across the cameras' lines of sight (its axis along the table's y): on the table, its silhouette
+    near horizontal in both images: `lying`, not seen standing. The other object, standing, is not lying."""
+    import mujoco
+    w = build_world(PAPER_ARRANGEMENTS["fig3"], 0)
+    with StereoCapture(w.model) as cap:
+        p = Vision().perceive(cap.grab(w.data))
+        assert not any(o.lying for o in p.objects.values())
+        adr = w.model.jnt_qposadr[w.model.body(name).jntadr[0]]
+        q = np.zeros(4)
+        mujoco.mju_axisAngle2Quat(q, np.array([1.0, 0.0, 0.0]), np.pi / 2)
+        w.data.qpos[adr + 3:adr + 7] = q
+        w.data.qpos[adr + 2] += 0.04
+        for _ in range(300):
+            mujoco.mj_step(w.model, w.data)
+        assert abs(w.data.xmat[w.body_id[name]][8]) < 0.2           # it does lie
+        p = Vision().perceive(cap.grab(w.data))
+    o = p.objects[name]
+    assert o.lying and not o.seen
+    assert np.hypot(*(np.array(o.position[:2]) - w.data.xpos[w.body_id[name]][:2])) < 0.1
+    other = p.objects["glass" if name == "bottle" else "bottle"]
+    assert other.seen and not other.lying

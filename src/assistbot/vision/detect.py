@@ -63,9 +63,10 @@ CROP = {"glass": (16, 20), "hand": (24, 24)}   # template sizes (w, h)
 ON_TABLE_TOL = 0.03
 BASE_AGREE = 0.02          # m: a standing object's axis is where a camera that sees its base puts that base
 BELOW_PX = 2.0             # px under a silhouette's lowest row where the robot's arm, if it is there, hides the base
-#: an object whose base is on the table but whose top is seen lower than this share of its height lies on
-#: its side (standing, the glass's rim is seen at 10-11 cm, lying at 6-7 cm; the bottle's neck 18 cm / 7 cm)
-LYING_TOP = 0.8
+#: rad: an object on the table whose silhouette lies this far from the image vertical in both cameras lies
+#: on its side (standing: 0.1-0.2; lying across the line of sight: 1.5). Seen end-on, along a camera's line
+#: of sight, a lying glass or bottle looks upright: that one vision cannot tell from one pair
+LYING_TILT = 1.0
 FACE_Z = 0.40              # m above the table: skin higher than this is the face, not the working hand
 STATIC_SKIN_R = 0.08       # m: skin this close to a calibrated static spot is not the working hand
 STATIC_MARGIN = 2          # half-resolution px (~1-2 cm at the table) around the static cells' projections
@@ -102,7 +103,7 @@ class ObjectDetection:
     on_table: bool = False
     inside: bool = False                # off the image borders in both cameras
     on_robot: bool = False              # its silhouette ends on the robot's arm in a camera (its base may be hidden)
-    lying: bool = False                 # on the table, on its side (`LYING_TOP`)
+    lying: bool = False                 # on the table, on its side (`LYING_TILT`)
 
 
 @dataclass
@@ -483,13 +484,12 @@ class Detector:
                 on_table = visible = True
         det = ObjectDetection(name, visible, pos, (a, b), extent=float(extent), tilt=float(tilt), top=Xt)
         det.on_table, det.inside, det.on_robot = on_table, inside, any(on_robot)
-        # its base on the table, but its top far lower than it stands, and not because the robot's arm hides
-        # the top (its silhouette would end at the arm): it lies on its side. Foreshortened along a camera's
-        # line of sight a lying object's silhouette is upright and about as high as wide, so the height, not
-        # the silhouette's tilt, is what tells
+        # on the table, its silhouette's axis near horizontal in both images, and not because the robot's arm
+        # covers part of it. (The triangulated top is no cue: the top rows of the two images are different
+        # points of the rim, and the height it gives is off by several cm near the cameras)
         top_hidden = body is not None and any(body.covers(cam, roi.above()) for cam, roi in zip(cams, rois))
         det.lying = bool(on_table and inside and not det.on_robot and not top_hidden
-                         and Xt[2] < LYING_TOP * layout.OBJECT_HEIGHT[name])
+                         and min(roi.upright_tilt() for roi in rois) >= LYING_TILT)
         self._object_features(det, rois, cams, pos)
         return det
 

@@ -49,10 +49,10 @@ def _in_robot_hand(d, tcp) -> bool:
     return bool(np.hypot(above[0], above[1]) < HELD_TOP_XY and HELD_TOP_Z[0] < above[2] < HELD_TOP_Z[1])
 
 
-def _top_in_hand(d, hand) -> bool:
-    """The person's hand at the object's top as seen: the top may be hidden in the hand, not low."""
-    return bool(hand.visible and hand.position is not None and d.top is not None
-                and _norm(np.asarray(hand.position, float) - d.top) < HAND_AT_TOP)
+def _in_a_hand(d, hand) -> bool:
+    """The person's hand at the object: one she turns or lays down in her hand is not one that fell."""
+    return bool(hand.visible and hand.position is not None and d.position is not None
+                and _norm(np.asarray(hand.position, float)[:2] - d.position[:2]) < IN_HAND_XY)
 
 
 def _seen_away_from(d, tcp) -> bool:
@@ -115,7 +115,7 @@ class Vision:
                 state, conf, state_seen = self._state(name, d, det.hand)
                 pos = tuple(round(float(v), 4) for v in d.position)
                 op = ObjectPercept(name, zone_of(pos[0]), state, pos, round(conf, 3), True, state_seen)
-            if d.lying and robot_holding != name and not _top_in_hand(d, det.hand):
+            if d.lying and robot_holding != name and not _in_a_hand(d, det.hand):
                 op = _unseen(name)      # fallen over: not standing anywhere the task can use it
                 op.lying, op.position = True, tuple(round(float(v), 4) for v in d.position)
             if robot_holding == name and not _seen_away_from(d, robot_tcp):
