@@ -180,6 +180,10 @@ class HumanController:
                 self.log.append(Event(self.t, "note", "dropped", {"behaviour": name, "reason": f"no longer sees {sight}", **args}))
                 continue
             if policy.still_relevant(self, name, args):
+                if name in policy.NEEDS_FREE_HAND and self.world.human_holding() in ("bottle", "glass"):
+                    self._pending.insert(0, (name, args))
+                    self.start("put_down")
+                    return
                 self.start(name, **args)
                 return
             self.log.append(Event(self.t, "note", "dropped", {"behaviour": name, **args}))

@@ -16,6 +16,9 @@ UNINTERRUPTIBLE = ("pull_stopper", "drink", "put_down", "turn_glass", "pour", "t
 #: ... but for a request that goes on with what the hand holds: asked to set down what it holds out,
 #: or told to drink (from the full glass it is handing over; anything else it puts down first)
 CONTINUES = {"hand_to_robot": ("put_down_for_robot", "drink")}
+#: behaviours that start with an empty hand: what the hand still holds (an object a hand-over did not take)
+#: is put down on her side first, not let fall
+NEEDS_FREE_HAND = ("pull_stopper", "take_from_robot", "request", "point")
 
 
 def _scene(c) -> dict:
