@@ -303,6 +303,26 @@ def test_told_to_drink_with_the_bottle_in_hand_the_person_puts_it_down_first():
     assert st.liquid.drunk >= DRINK_FRACTION * layout.N_PARTICLES
 
 
+def test_invited_to_pull_the_stopper_while_handing_the_glass_over_she_sets_the_glass_down_first():
+    """Holding the glass out to the robot (which does not take it: the stand-in holds the bottle out
+    instead, too far aside for the hand-over), she is invited to remove the stopper: once the hand-over
+    ends, the glass goes down upright on her side before she turns to the stopper; it does not fall from
+    her opened hand. (Whether she then reaches the stopper held out there is not this test's.)"""
+    w, s, hc = _setup(_arr({"zone": "RWS", "state": "closed", "position": [0.15, -0.05]}, {"zone": "HWS", "state": "empty"}))
+    hc.start("hand_to_robot", object="glass", grip="ag", timeout=6.0)
+    hc.run(4.5, robot=s.tick)
+    assert w.state().human_holds == "glass"
+    s.grasp_at("bottle")
+    hc.run(0.02, robot=s.tick)
+    s.carry_to((-0.07, 0.26, layout.TABLE_Z + 0.03))     # held out away from the glass she holds out
+    hc.hear("invite:remove_stopper", w.time)
+    _run_until_done(hc, s, 60.0, "pull_stopper")
+    assert [e.what for e in hc.events("start")] == ["hand_to_robot", "put_down", "pull_stopper"]
+    assert [e.what for e in hc.events("success")][:1] == ["put_down"]
+    st = w.state()
+    assert st.objects["glass"].upright and st.objects["glass"].zone == "HWS" and st.objects["glass"].held_by is None
+
+
 # ---------------------------------------------------------------------------- scripts wait for their events
 def test_script_steps_wait_for_after_events():
     script = [
