@@ -12,7 +12,9 @@ from __future__ import annotations
 from collections import deque
 from dataclasses import dataclass
 
-from assistbot.cognition.percept import Percept, away_from_hand
+import numpy as np
+
+from assistbot.cognition.percept import HandPercept, Percept, away_from_hand
 from assistbot.robot.actions import ACTION_PRIMITIVES
 from assistbot.robot.controller import RobotController
 from assistbot.robot.primitives import Status
@@ -32,10 +34,12 @@ OPEN_HAND_MEMORY = 30.0
 STANDING_Z = 0.03
 #: s for which what the hand believes it holds must be seen away from the hand before the grasp counts as lost
 AWAY_SECONDS = 1.0
-#: s over which the frames showing the person's hand must mostly show it held out for the robot to reach
-#: in for what it holds (the posture of a hand held still flickers between classes from frame to frame;
-#: a hand passing through the hand-over zone, to pour say, is seen held out in a frame or two)
+#: s of the frames showing the person's hand that say whether she still holds something out to the robot
+#: (`_offered`), and m within which a hand held still stays in them
 OFFER_WINDOW = 1.0
+STILL_HAND = 0.02
+#: postures in which the hand uses what it holds for itself
+USING = ("pour", "drink")
 
 
 @dataclass
@@ -69,7 +73,7 @@ class RobotExecutor:
         self._held_out_name: str | None = None  # what the person was last seen holding, during this action
         self._away_since: float | None = None   # since when what the hand believes it holds is seen elsewhere
         self._lost = False                       # ... long enough: this action's grasp is not of it
-        self._hand_out: deque[tuple[float, bool]] = deque()   # (t, held out) of the frames showing the hand
+        self._hand_seen: deque[tuple[float, HandPercept]] = deque()   # the frames of the last OFFER_WINDOW showing the hand
 
     # -- what the robot knows of its own body ------------------------------------------------
     def holding(self) -> str | None:
@@ -145,12 +149,20 @@ class RobotExecutor:
         return max(seen) if seen else None
 
     def _offered(self) -> bool:
-        """The person holds something out: at least half the frames of the last OFFER_WINDOW that show the
-        hand show it held out. A hand not seen at all (often hidden by the robot's own arm) is given the
-        benefit of the doubt."""
-        if not self._hand_out:
+        """The person still holds something out to the robot, as the frames of the last OFFER_WINDOW that
+        show the hand say: none shows it pouring or drinking, and it has kept still (within STILL_HAND), or
+        most of them show it held out. A hand on its way (lifting the bottle to pour, say) passes through
+        the hand-over zone and may be seen held out in a frame or two; a hand holding out keeps still, at
+        the zone's edge too, and its posture flickers between classes from frame to frame. A hand not
+        seen at all (often hidden by the robot's own arm) is given the benefit of the doubt."""
+        frames = [h for _, h in self._hand_seen]
+        if not frames:
             return True
-        return 2 * sum(out for _, out in self._hand_out) >= len(self._hand_out)
+        if any(h.posture in USING for h in frames):
+            return False
+        pos = np.array([h.position for h in frames], float)
+        still = float(np.ptp(pos, axis=0).max()) <= STILL_HAND
+        return still or 2 * sum(h.held_out for h in frames) >= len(frames)
 
     def _seen_elsewhere(self) -> bool:
         """What the hand believes it holds has been seen away from the hand (vision places an object in
@@ -228,10 +240,10 @@ class RobotExecutor:
             self._open_hand = (percept.t, tuple(float(v) for v in h.position))
         if h.seen and h.object_in_hand:
             self._held_out_name = h.object_in_hand
-        if h.seen:   # held out with or without what it holds in view (the hand, or the robot's arm, hides it)
-            self._hand_out.append((percept.t, bool(h.held_out)))
-        while self._hand_out and self._hand_out[0][0] <= percept.t - OFFER_WINDOW:
-            self._hand_out.popleft()
+        if h.seen:
+            self._hand_seen.append((percept.t, h))
+        while self._hand_seen and self._hand_seen[0][0] <= percept.t - OFFER_WINDOW:
+            self._hand_seen.popleft()
         held = percept.objects.get(h.object_in_hand) if h.seen and h.object_in_hand else None
         if held is not None and held.seen:
             self._held_out_seen = True
