@@ -71,6 +71,7 @@ FACE_Z = 0.40              # m above the table: skin higher than this is the fac
 STATIC_SKIN_R = 0.08       # m: skin this close to a calibrated static spot is not the working hand
 STATIC_MARGIN = 2          # half-resolution px (~1-2 cm at the table) around the static cells' projections
 HAND_REACH = 0.10          # m: hand crop half-size
+BEYOND_TIP_PX = 3.0        # px past the hand skin's farthest pixel where the robot's arm, if it is there, hides the rest
 HOG_CELL, HOG_BINS = 8, 6  # the hand crops' gradient histograms: cells (px) and orientations
 AT_GLASS_PX = 3            # half-resolution px (about 2-3 cm at the hand) around the hand's end ...
 AT_GLASS_MIN = 2           # ... holding at least this many glass pixels in each camera: the hand is at the glass
@@ -116,6 +117,7 @@ class HandDetection:
     geo: np.ndarray | None = None
     uv: np.ndarray | None = None             # distal end in the left image
     at_glass: bool = False                   # its end touches the glass's image in both cameras
+    end_on_robot: bool = False               # its skin ends on the robot's arm in a camera: the fingers may reach on, hidden
 
 
 @dataclass
@@ -401,7 +403,7 @@ class Detector:
         blobs = [{"bottle": f[0], "glass": f[1], "skin": (f[2], v[2])} for f, v in zip(found, views)]
         for name in ("bottle", "glass"):
             det.objects[name] = self._object(name, blobs, imgs, cams, body)
-        det.hand = self._hand(blobs, lab, imgs, cams, det)
+        det.hand = self._hand(blobs, lab, imgs, cams, det, body)
         for o in det.objects.values():
             self._held(o, det.hand)
         return det
@@ -523,7 +525,7 @@ class Detector:
         det.feat = np.array([max(liq), min(liq), shape, det.tilt, float(pos[2])], np.float32)
 
     # ------------------------------------------------------------------ hand
-    def _hand(self, blobs, lab, imgs, cams, det: Detections) -> HandDetection:
+    def _hand(self, blobs, lab, imgs, cams, det: Detections, body: RobotBody | None = None) -> HandDetection:
         (bl, cl), (br, cr) = blobs[0]["skin"], blobs[1]["skin"]
         best = None
         pairs = [(a, b) for a in bl for b in (_match(a, br),) if b is not None]
@@ -548,6 +550,7 @@ class Detector:
             return HandDetection(False)
         a, b, X = best
         ends, roots, spread = [], [], []
+        end_on_robot = False
         for L, bb, cc, cam in ((lab[0], a, cl, cams[0]), (lab[1], b, cr, cams[1])):
             x, y, w, h = (v // 2 for v in bb.bbox)
             x0, y0, x1, y1 = max(0, x - 2), max(0, y - 2), min(L.shape[1], x + w + 2), min(L.shape[0], y + h + 2)
@@ -567,6 +570,15 @@ class Detector:
             end = far.sum(axis=0) / len(far)           # far.mean(axis=0)
             ends.append(end)
             roots.append(root)
+            if body is not None and not end_on_robot:
+                # just beyond the skin's farthest pixel, along the arm and to either side: the robot's arm
+                # there hides the rest of the hand (its fingers), and the end seen falls short
+                tip = P[int(np.argmax(dist2))]
+                along = end - root
+                along = along / max(1e-6, float(np.hypot(along[0], along[1])))
+                across = np.array([-along[1], along[0]])
+                beyond = tip + BEYOND_TIP_PX * along
+                end_on_robot = body.covers(cam, np.array([beyond, beyond + BEYOND_TIP_PX * across, beyond - BEYOND_TIP_PX * across]))
             if not spread:   # the hand's own outline (left camera): spread along and across the arm, in px
                 ax = end - root
                 ax = ax / max(1e-6, float(np.hypot(ax[0], ax[1])))
@@ -598,7 +610,7 @@ class Detector:
         area = a.area * px ** 2 * 1e4                               # cm^2 of skin in view
         shape = [spread[0] * px * 100, spread[1] * px * 100, spread[2] * px * px * 1e4]   # cm, cm, cm^2
         geo = np.concatenate([self._hand_geo(Xd, Xr, det, area, shape), *hogs, *fingers])
-        return HandDetection(True, Xd, Xr, a, crop, geo, np.asarray(ends[0]), at_glass)
+        return HandDetection(True, Xd, Xr, a, crop, geo, np.asarray(ends[0]), at_glass, bool(end_on_robot))
 
     @staticmethod
     def _hand_geo(Xd: np.ndarray, Xr: np.ndarray, det: Detections, area: float, shape) -> np.ndarray:

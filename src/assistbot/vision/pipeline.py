@@ -31,6 +31,7 @@ from assistbot.world.layout import HANDOVER_ZONE_X, zone_of
 
 HELD_OUT_Z = 0.14           # m above the table: a hand in the hand-over zone this high is raised toward the robot
 IN_HAND_XY = 0.10           # a grasping hand this close (m, horizontally) to an object holds it
+HIDDEN_FINGERS = 0.10       # m of a hand that the robot's arm can hide beyond the end seen (the fingers)
 STOPPER_SEEN = 0.04         # red touching the bottle, as a share of a stopper's expected area: closed
 HAND_AT_TOP = 0.12          # m: a hand this close to the bottle's top may hide the stopper
 LOW_CONFIDENCE = 0.3        # confidence of a state the pixels cannot show (stopper covered)
@@ -202,7 +203,14 @@ class Vision:
                     along = float(v @ d)
                     return abs(float(v[0] * d[1] - v[1] * d[0])) if along > -0.05 else 9.0
                 hp.pointed_at = min(seen_objs, key=off)
-        hp.held_out = bool(X[0] > HANDOVER_ZONE_X[0] and X[2] > HELD_OUT_Z and posture in ("grasp_ag", "grasp_sg", "open_palm_request"))
+        # how far toward the robot the hand reaches: its end as seen; where the robot's arm hides the rest
+        # of it (its fingers, next to the robot's hand reaching for what they hold), up to a hand's fingers
+        # farther; and at least as far as the object in it
+        reach_x = X[0] + (HIDDEN_FINGERS if h.end_on_robot else 0.0)
+        held = p.objects.get(hp.object_in_hand) if hp.object_in_hand else None
+        if held is not None and held.seen:   # what it holds, placed by its own silhouette: the glass held from
+            reach_x = max(reach_x, held.position[0])   # above hides the fingers, and the end seen is the wrist
+        hp.held_out = bool(reach_x > HANDOVER_ZONE_X[0] and X[2] > HELD_OUT_Z and posture in ("grasp_ag", "grasp_sg", "open_palm_request"))
         if hp.object_in_hand and hp.held_out and not p.objects[hp.object_in_hand].seen:
             # held out but not placed (lifted objects are hard to place): in the hand's zone; one that is
             # seen keeps its own, which the hand's end (fingers around it, past the middle line) is not
