@@ -427,6 +427,8 @@ class Primitive:
             status, reason = Status.FAILED, f"{phase.name}: {self.object} slipped out of the hand"
         elif status is Status.RUNNING and self.carrying and self.object and self.seen_elsewhere():
             status, reason = Status.FAILED, f"{phase.name}: the {self.object} is not in the hand (seen away from it)"
+        elif status is Status.RUNNING and self._failure is None and (why := self.interrupted(phase)):
+            status, reason = Status.FAILED, f"{phase.name}: {why}"
         if status is Status.FAILED and phase.fallback is not None and self._failure is None:
             # end safely first, then report
             self._failure = Progress(Status.FAILED, phase.name, reason, self._t_total)
@@ -448,6 +450,10 @@ class Primitive:
         else:
             self.progress = Progress(Status.RUNNING, phase.name, "", self._t_total)
         return self.progress
+
+    def interrupted(self, phase: Phase) -> str:
+        """Why ``phase`` must stop now, from what is perceived ("" to go on); its fallback then ends it safely."""
+        return ""
 
     def _after(self, phase: Phase) -> None:
         if isinstance(phase, Grip):
@@ -1190,6 +1196,9 @@ class Receive(Primitive):
         k = next(i for i, ph in enumerate(reach) if ph.name == "approach")
         reach.insert(k, WaitFor("wait while it is held out", lambda p: p.offered(), OFFER_PATIENCE,
                                 "the person did not hold it out"))
+        # ... and while it closes in: a person who starts to pour instead is not reached into; the open hand
+        # backs off the way it came
+        reach[k + 1].fallback = lambda p: [BackOff("back off from the hand", distance=0.16)]
         return reach + [
             Wait("hold", 1.5),  # the human feels the robot's grip before letting go
             WaitFor("wait for the human to let go", lambda p: not p.human_holds(), self.timeout,
@@ -1198,6 +1207,12 @@ class Receive(Primitive):
             *_put_down_at(lambda p: p.free_spot()),
             *_retract(),
         ]
+
+
+    def interrupted(self, phase: Phase) -> str:
+        if phase.name == "approach" and not self.offered():
+            return "the person no longer holds it out"
+        return ""
 
 
 class TakeFromTable(Primitive):
