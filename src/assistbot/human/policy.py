@@ -55,7 +55,8 @@ def response_to_tag(c, tag: str) -> list[tuple[str, dict]]:
         first = [("put_down", {})] if holding is not None and holding != what else []
         return first + [("take_from_robot", {"object": what})]
     if kind == "give_object":
-        return [("hand_to_robot", {"object": what, "grip": "ag"})]
+        first = [("put_down", {})] if holding is not None and holding != what else []
+        return first + [("hand_to_robot", {"object": what, "grip": "ag"})]
     if kind == "drink":
         return ([("put_down", {})] if holding not in (None, "glass") else []) + [("drink", {})]
     if kind == "put_down_here" and holding in ("bottle", "glass"):
