@@ -27,11 +27,14 @@ from assistbot.task import OBJECT_STATES
 from assistbot.vision import library
 from assistbot.vision.capture import StereoFrame
 from assistbot.vision.detect import HELD_DIST, MAX_TILT, Detections, Detector, axis_distance
-from assistbot.world.layout import HANDOVER_ZONE_X, zone_of
+from assistbot.world.layout import HANDOVER_ZONE_X, OBJECT_HEIGHT, zone_of
 
 HELD_OUT_Z = 0.14           # m above the table: a hand in the hand-over zone this high is raised toward the robot
 IN_HAND_XY = 0.10           # a grasping hand this close (m, horizontally) to an object holds it
 HIDDEN_FINGERS = 0.10       # m of a hand that the robot's arm can hide beyond the end seen (the fingers)
+LIFTED_Z = 0.03             # m: an object seen with its base this high is off the table (in a hand)
+AT_TOP = 0.02               # m: a hand's end this far below an object's top, or higher, holds it from above
+HOLDING = ("grasp_ag", "grasp_sg", "pour", "drink", "remove_stopper")   # postures of a hand with something in it
 STOPPER_SEEN = 0.04         # red touching the bottle, as a share of a stopper's expected area: closed
 HAND_AT_TOP = 0.12          # m: a hand this close to the bottle's top may hide the stopper
 LOW_CONFIDENCE = 0.3        # confidence of a state the pixels cannot show (stopper covered)
@@ -168,12 +171,22 @@ class Vision:
         hand = self.classifiers["hand"]
         pr = hand.probabilities(h.crop, h.geo)[0]
         c = int(pr.argmax())
+        lifted_near = [o for o in p.objects.values()
+                       if o.seen and o.position[2] > LIFTED_Z and _norm(np.asarray(o.position[:2]) - h.position[:2]) < IN_HAND_XY + 0.05]
         if hand.classes[c] == "pointing" and h.at_glass:
             # a pointing finger stays clear of what it points at; a hand whose end touches the glass in
             # both images is at it, and the glass hides the hand (turning it, say): the forearm's end
             # then looks like a finger.  The likeliest other posture, with its (low) probability
             pr[c] = 0.0
             c = int(pr.argmax())
+        if lifted_near and hand.classes[c] not in HOLDING:
+            # an object lifted off the table right at the hand is in it, whatever the hand's outline looks
+            # like (the robot's open hand next to it, asking for it, hides or extends the skin, and the
+            # library's scenes have no robot hand there): from above if the hand's end is over its top
+            o = lifted_near[0]
+            above = h.position[2] > o.position[2] + OBJECT_HEIGHT[o.type] - AT_TOP
+            c = hand.classes.index("grasp_ag" if above else "grasp_sg")
+            pr[c] = max(float(pr[c]), o.confidence)   # as sure as the object is seen in it
         posture, conf = hand.classes[c], float(pr[c])
         X = h.position + self.hand_offset.get(posture, np.zeros(3))
         seen_objs = {n: np.array(o.position) for n, o in p.objects.items() if o.seen}
