@@ -183,7 +183,7 @@ class Vision:
             # an object lifted off the table right at the hand is in it, whatever the hand's outline looks
             # like (the robot's open hand next to it, asking for it, hides or extends the skin, and the
             # library's scenes have no robot hand there): from above if the hand's end is over its top
-            o = lifted_near[0]
+            o = min(lifted_near, key=lambda o: _norm(np.asarray(o.position[:2]) - h.position[:2]))
             above = h.position[2] > o.position[2] + OBJECT_HEIGHT[o.type] - AT_TOP
             c = hand.classes.index("grasp_ag" if above else "grasp_sg")
             pr[c] = max(float(pr[c]), o.confidence)   # as sure as the object is seen in it
