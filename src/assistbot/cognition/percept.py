@@ -44,6 +44,9 @@ from dataclasses import dataclass, field
 from assistbot.task import HAND_POSTURES, OBJECT_STATES, OBJECTS, ZONES
 
 ROBOT_STATUSES = ("idle", "running", "finished", "failed")
+#: m above the table: an object seen with its base lower than this stands on the table; higher, it is
+#: lifted (in a hand)
+STANDING_Z = 0.03
 #: m: the object the robot holds is placed at its hand, unless it is seen farther than this from the hand
 #: (horizontally): then where it is seen (the grasp closed on something else, or the object stayed behind)
 NOT_IN_HAND_XY = 0.10

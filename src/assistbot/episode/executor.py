@@ -14,7 +14,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from assistbot.cognition.percept import HandPercept, Percept, away_from_hand
+from assistbot.cognition.percept import STANDING_Z, HandPercept, Percept, away_from_hand
 from assistbot.robot.actions import ACTION_PRIMITIVES
 from assistbot.robot.controller import RobotController
 from assistbot.robot.primitives import Status
@@ -30,8 +30,6 @@ WAIT_REST = 1.0
 WAIT_MAX = 20.0
 #: s for which an open hand seen held out still says where the partner wants things handed
 OPEN_HAND_MEMORY = 30.0
-#: an object seen with its base this low (m above the table) stands on the table
-STANDING_Z = 0.03
 #: s for which what the hand believes it holds must be seen away from the hand before the grasp counts as lost
 AWAY_SECONDS = 1.0
 #: s of the frames showing the person's hand that say whether she still holds something out to the robot

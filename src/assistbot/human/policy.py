@@ -17,8 +17,13 @@ UNINTERRUPTIBLE = ("pull_stopper", "drink", "put_down", "turn_glass", "pour", "t
 #: or told to drink (from the full glass it is handing over; anything else it puts down first)
 CONTINUES = {"hand_to_robot": ("put_down_for_robot", "drink")}
 #: behaviours that start with an empty hand: what the hand still holds (an object a hand-over did not take)
-#: is put down on her side first, not let fall
-NEEDS_FREE_HAND = ("pull_stopper", "take_from_robot", "request", "point")
+#: is put down on her side first, not let fall (take_from_robot's own answers put it down: `_put_down_first`)
+NEEDS_FREE_HAND = ("pull_stopper", "request", "point")
+
+
+def _put_down_first(holding: str | None, keep: str | None) -> list[tuple[str, dict]]:
+    """A hand about to act on ``keep`` first puts down anything else it holds, on this side."""
+    return [("put_down", {})] if holding is not None and holding != keep else []
 
 
 def _scene(c) -> dict:
@@ -52,13 +57,11 @@ def response_to_tag(c, tag: str) -> list[tuple[str, dict]]:
     if kind == "take_object":
         # a hand that holds something first puts it down on this side (or holds the bottle out
         # for ever, while the robot waits to give the glass)
-        first = [("put_down", {})] if holding is not None and holding != what else []
-        return first + [("take_from_robot", {"object": what})]
+        return _put_down_first(holding, what) + [("take_from_robot", {"object": what})]
     if kind == "give_object":
-        first = [("put_down", {})] if holding is not None and holding != what else []
-        return first + [("hand_to_robot", {"object": what, "grip": "ag"})]
+        return _put_down_first(holding, what) + [("hand_to_robot", {"object": what, "grip": "ag"})]
     if kind == "drink":
-        return ([("put_down", {})] if holding not in (None, "glass") else []) + [("drink", {})]
+        return _put_down_first(holding, "glass") + [("drink", {})]
     if kind == "put_down_here" and holding in ("bottle", "glass"):
         return [("put_down_for_robot", {})]
     if tag == "error:cannot_remove_stopper" and holding == "bottle" and c.profile.initiative:
@@ -74,7 +77,7 @@ def response_to_sight(c, key: str) -> list[tuple[str, dict]]:
         holding = c.world.human_holding()
         if holding == what:
             return []
-        return ([("put_down", {})] if holding is not None else []) + [("take_from_robot", {"object": what})]
+        return _put_down_first(holding, what) + [("take_from_robot", {"object": what})]
     return []
 
 

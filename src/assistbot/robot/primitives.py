@@ -1193,12 +1193,12 @@ class Receive(Primitive):
         reach = _reach_and_grasp(self, held_up=True)
         # from the pre-grasp on, the hand closes in on the person's: only while they still hold it out
         # (a hand lifting the bottle to pour passes through the hand-over zone, and may pause there)
-        k = next(i for i, ph in enumerate(reach) if ph.name == "approach")
+        k, approach = next((i, ph) for i, ph in enumerate(reach) if ph.name == "approach")
         reach.insert(k, WaitFor("wait while it is held out", lambda p: p.offered(), OFFER_PATIENCE,
                                 "the person did not hold it out"))
-        # ... and while it closes in: a person who starts to pour instead is not reached into; the open hand
-        # backs off the way it came
-        reach[k + 1].fallback = lambda p: [BackOff("back off from the hand", distance=0.16)]
+        # ... and while it closes in (`interrupted`): a person who starts to pour instead is not reached
+        # into; the open hand backs off the way it came
+        approach.fallback = lambda p: [BackOff("back off from the hand", distance=0.16)]
         return reach + [
             Wait("hold", 1.5),  # the human feels the robot's grip before letting go
             WaitFor("wait for the human to let go", lambda p: not p.human_holds(), self.timeout,

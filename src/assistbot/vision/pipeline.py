@@ -22,7 +22,7 @@ from dataclasses import dataclass
 import cv2
 import numpy as np
 
-from assistbot.cognition.percept import HandPercept, ObjectPercept, Percept, away_from_hand
+from assistbot.cognition.percept import STANDING_Z, HandPercept, ObjectPercept, Percept, away_from_hand
 from assistbot.task import OBJECT_STATES
 from assistbot.vision import library
 from assistbot.vision.capture import StereoFrame
@@ -32,7 +32,6 @@ from assistbot.world.layout import HANDOVER_ZONE_X, OBJECT_HEIGHT, zone_of
 HELD_OUT_Z = 0.14           # m above the table: a hand in the hand-over zone this high is raised toward the robot
 IN_HAND_XY = 0.10           # a grasping hand this close (m, horizontally) to an object holds it
 HIDDEN_FINGERS = 0.10       # m of a hand that the robot's arm can hide beyond the end seen (the fingers)
-LIFTED_Z = 0.03             # m: an object seen with its base this high is off the table (in a hand)
 AT_TOP = 0.02               # m: a hand's end this far below an object's top, or higher, holds it from above
 HOLDING = ("grasp_ag", "grasp_sg", "pour", "drink", "remove_stopper")   # postures of a hand with something in it
 STOPPER_SEEN = 0.04         # red touching the bottle, as a share of a stopper's expected area: closed
@@ -172,7 +171,7 @@ class Vision:
         pr = hand.probabilities(h.crop, h.geo)[0]
         c = int(pr.argmax())
         lifted_near = [o for o in p.objects.values()
-                       if o.seen and o.position[2] > LIFTED_Z and _norm(np.asarray(o.position[:2]) - h.position[:2]) < IN_HAND_XY + 0.05]
+                       if o.seen and o.position[2] > STANDING_Z and _norm(np.asarray(o.position[:2]) - h.position[:2]) < IN_HAND_XY + 0.05]
         if hand.classes[c] == "pointing" and h.at_glass:
             # a pointing finger stays clear of what it points at; a hand whose end touches the glass in
             # both images is at it, and the glass hides the hand (turning it, say): the forearm's end
