@@ -7,7 +7,7 @@ BIN    := $(VENV)/bin
 STAMP  := $(VENV)/.installed
 DEBS   := libosmesa6 libegl1 libegl-mesa0 libgl1-mesa-dri espeak-ng
 
-.PHONY: demo test test-all bench matrix setup debs clean
+.PHONY: demo test test-all bench matrix setup debs clean wheel-check
 
 setup: $(STAMP)
 
@@ -45,6 +45,10 @@ WORKERS ?= 2
 matrix: $(STAMP)
 	$(BIN)/assistbot sweep scenarios/sweeps/matrix.yaml --workers $(WORKERS) --out render/sweeps/matrix
 	$(BIN)/assistbot report render/sweeps/matrix
+
+# The wheel as a user installs it: built, installed into a fresh venv, run from a temporary folder.
+wheel-check:
+	bash .ci/wheel-check
 
 bench: $(STAMP)
 	@for b in benchmarks/*.py; do echo "== $$b"; $(BIN)/python $$b || exit 1; done

@@ -24,8 +24,9 @@ from pathlib import Path
 from typing import Any
 
 from assistbot.errors import UserError, read_yaml
+from assistbot.resources import SCENARIOS
 
-SCENARIO_DIR = Path(__file__).resolve().parents[2] / "scenarios"
+SCENARIO_DIR = SCENARIOS
 TOP_KEYS = ("name", "description", "seed", "time_limit", "objects", "human", "overrides")
 
 

@@ -18,7 +18,7 @@ ORDER = 41
 def add_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument("--seed", type=int, default=0)
     p.add_argument("--scenes", type=int, default=16)
-    p.add_argument("--out", type=Path, default=None, help="output folder (default assets/templates)")
+    p.add_argument("--out", type=Path, default=None, help="output folder (default: the package's assistbot/assets/templates)")
 
 
 def run(args: argparse.Namespace) -> int:

@@ -21,7 +21,7 @@ ORDER = 40
 def add_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument("--seed", type=int, default=0, help="library seed (default 0)")
     p.add_argument("--scenes", type=int, default=3240, help="labelled scenes to render (default 3240, 360 per hand posture)")
-    p.add_argument("--out", type=Path, default=None, help="output folder (default assets/templates)")
+    p.add_argument("--out", type=Path, default=None, help="output folder (default: the package's assistbot/assets/templates)")
     p.add_argument("--check", action="store_true", help="only check that the library loads")
 
 

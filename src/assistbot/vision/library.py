@@ -19,8 +19,9 @@ import cv2
 import numpy as np
 
 from assistbot.errors import UserError
+from assistbot.resources import TEMPLATES
 
-ROOT = Path(__file__).resolve().parents[3] / "assets" / "templates"
+ROOT = TEMPLATES
 PROTOTYPES = 2
 KINDS = {"bottle": ("closed", "open"), "glass": ("inverted", "empty", "full"),
          "hand": ("none", "reach", "grasp_ag", "grasp_sg", "open_palm_request", "pointing", "remove_stopper", "pour", "drink")}

@@ -8,9 +8,9 @@ They must agree with assets/mjcf/*.xml (tests check the important ones).
 
 from __future__ import annotations
 
-from pathlib import Path
+from assistbot.resources import MJCF
 
-ASSETS = Path(__file__).resolve().parents[3] / "assets" / "mjcf"
+ASSETS = MJCF
 SCENE_XML = ASSETS / "scene.xml"
 
 TABLE_Z = 0.75                 # height of the table top above the floor (m)
