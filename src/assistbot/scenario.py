@@ -26,7 +26,6 @@ from typing import Any
 from assistbot.errors import UserError, read_yaml
 from assistbot.resources import SCENARIOS
 
-SCENARIO_DIR = SCENARIOS
 TOP_KEYS = ("name", "description", "seed", "time_limit", "objects", "human", "overrides")
 
 
@@ -101,7 +100,7 @@ def resolve_path(spec: str | Path) -> Path:
     p = Path(spec)
     if p.suffix in (".yaml", ".yml") or p.exists():
         return p
-    shipped = SCENARIO_DIR / f"{spec}.yaml"
+    shipped = SCENARIOS / f"{spec}.yaml"
     if shipped.exists():
         return shipped
     known = ", ".join(s.stem for s in shipped_scenarios())
@@ -114,4 +113,4 @@ def load_scenario(spec: str | Path) -> Scenario:
 
 
 def shipped_scenarios() -> list[Path]:
-    return sorted(SCENARIO_DIR.glob("*.yaml"))
+    return sorted(SCENARIOS.glob("*.yaml"))

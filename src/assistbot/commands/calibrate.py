@@ -23,10 +23,10 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
 
 def run(args: argparse.Namespace) -> int:
     from assistbot.vision.calibration import calibrate
-    from assistbot.vision.library import ROOT
+    from assistbot.resources import TEMPLATES
 
     cal = calibrate(args.seed, args.scenes)
-    root = args.out or ROOT
+    root = args.out or TEMPLATES
     root.mkdir(parents=True, exist_ok=True)
     path = root / "calibration.json"
     path.write_text(json.dumps(cal, indent=1, sort_keys=True) + "\n")

@@ -15,11 +15,12 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
 
 def run(args: argparse.Namespace) -> int:
     from assistbot.errors import UserError
-    from assistbot.scenario import SCENARIO_DIR, load_scenario, shipped_scenarios
+    from assistbot.resources import SCENARIOS
+    from assistbot.scenario import load_scenario, shipped_scenarios
 
     paths = shipped_scenarios()
     if not paths:   # an installation without its data: say so rather than list nothing
-        raise UserError(str(SCENARIO_DIR), "scenarios", "no shipped scenario found; reinstall assistbot")
+        raise UserError(str(SCENARIOS), "scenarios", "no shipped scenario found; reinstall assistbot")
     for path in paths:
         s = load_scenario(path)
         b, g = s.objects.bottle, s.objects.glass

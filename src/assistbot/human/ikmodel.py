@@ -15,9 +15,9 @@ from pathlib import Path
 
 import mujoco
 
-from assistbot.world import layout
+from assistbot.resources import MJCF
 
-HUMAN_XML: Path = layout.ASSETS / "human.xml"
+HUMAN_XML: Path = MJCF / "human.xml"
 
 
 @lru_cache(maxsize=1)

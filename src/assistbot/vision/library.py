@@ -21,7 +21,6 @@ import numpy as np
 from assistbot.errors import UserError
 from assistbot.resources import TEMPLATES
 
-ROOT = TEMPLATES
 PROTOTYPES = 2
 KINDS = {"bottle": ("closed", "open"), "glass": ("inverted", "empty", "full"),
          "hand": ("none", "reach", "grasp_ag", "grasp_sg", "open_palm_request", "pointing", "remove_stopper", "pour", "drink")}
@@ -232,7 +231,7 @@ def _r(a) -> list[float]:
 
 
 def load_calibration(root: Path | None = None) -> dict:
-    path = (root or ROOT) / "calibration.json"
+    path = (root or TEMPLATES) / "calibration.json"
     if not path.exists():
         raise UserError(str(path), "calibration", "missing colour calibration; run `assistbot calibrate` (or `assistbot templates`, which also calibrates)")
     return json.loads(path.read_text())
@@ -240,7 +239,7 @@ def load_calibration(root: Path | None = None) -> dict:
 
 def load(root: Path | None = None) -> tuple[dict[str, Classifier], dict]:
     """The classifiers and the calibration from assets/templates/ (UserError if missing)."""
-    root = root or ROOT
+    root = root or TEMPLATES
     path = root / "index.json"
     if not path.exists():
         raise UserError(str(path), "template library", "missing; run `assistbot templates` to build it")

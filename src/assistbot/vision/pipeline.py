@@ -23,6 +23,7 @@ import cv2
 import numpy as np
 
 from assistbot.cognition.percept import STANDING_Z, HandPercept, ObjectPercept, Percept, away_from_hand
+from assistbot.resources import TEMPLATES
 from assistbot.task import OBJECT_STATES
 from assistbot.vision import library
 from assistbot.vision.capture import StereoFrame
@@ -30,7 +31,8 @@ from assistbot.vision.detect import HELD_DIST, MAX_TILT, Detections, Detector, a
 from assistbot.world.layout import HANDOVER_ZONE_X, OBJECT_HEIGHT, zone_of
 
 HELD_OUT_Z = 0.14           # m above the table: a hand in the hand-over zone this high is raised toward the robot
-IN_HAND_XY = 0.10           # a grasping hand this close (m, horizontally) to an object holds it
+IN_HAND_XY = 0.10           # a grasping hand this close (m, horizontally) to an object holds it ...
+IN_HAND_END_XY = IN_HAND_XY + 0.05      # ... measured from the hand's end, which may lie past the object's axis
 HIDDEN_FINGERS = 0.10       # m of a hand that the robot's arm can hide beyond the end seen (the fingers)
 AT_TOP = 0.02               # m: a hand's end this far below an object's top, or higher, holds it from above
 HOLDING = ("grasp_ag", "grasp_sg", "pour", "drink", "remove_stopper")   # postures of a hand with something in it
@@ -171,7 +173,7 @@ class Vision:
         pr = hand.probabilities(h.crop, h.geo)[0]
         c = int(pr.argmax())
         lifted_near = [o for o in p.objects.values()
-                       if o.seen and o.position[2] > STANDING_Z and _norm(np.asarray(o.position[:2]) - h.position[:2]) < IN_HAND_XY + 0.05]
+                       if o.seen and o.position[2] > STANDING_Z and _norm(np.asarray(o.position[:2]) - h.position[:2]) < IN_HAND_END_XY]
         if hand.classes[c] == "pointing" and h.at_glass:
             # a pointing finger stays clear of what it points at; a hand whose end touches the glass in
             # both images is at it, and the glass hides the hand (turning it, say): the forearm's end
@@ -202,7 +204,7 @@ class Vision:
                 hp.object_in_hand = "glass"
         elif seen_objs:
             near = min(seen_objs, key=lambda n: _norm(seen_objs[n][:2] - X[:2]))
-            if posture in ("grasp_ag", "grasp_sg") and _norm(seen_objs[near][:2] - X[:2]) < IN_HAND_XY + 0.05:
+            if posture in ("grasp_ag", "grasp_sg") and _norm(seen_objs[near][:2] - X[:2]) < IN_HAND_END_XY:
                 hp.object_in_hand = near
             if posture in ("reach", "grasp_ag", "grasp_sg"):
                 hp.directed_at = near
@@ -298,7 +300,7 @@ def build_library(seed: int = 0, n_scenes: int = 3240, root=None, progress=None)
 
     clfs, cal = fit_library(cal, frames(), seed)
     meta = {"seed": seed, "scenes": n_scenes, "examples": {k: len(c.y) for k, c in clfs.items()}}
-    return library.save(root or library.ROOT, clfs, cal, meta)
+    return library.save(root or TEMPLATES, clfs, cal, meta)
 
 
 #: feature weights (after the template scores) per kind: the stopper and liquid features decide the states

@@ -10,8 +10,7 @@ from __future__ import annotations
 
 from assistbot.resources import MJCF
 
-ASSETS = MJCF
-SCENE_XML = ASSETS / "scene.xml"
+SCENE_XML = MJCF / "scene.xml"
 
 TABLE_Z = 0.75                 # height of the table top above the floor (m)
 TABLE_HALF_X = 0.40            # the table spans x in [-0.40, 0.40]
