@@ -35,3 +35,39 @@ def test_an_object_held_out_to_the_robot_is_a_target(executor):
 def test_a_standing_object_is_a_target(executor):
     executor.see(_percept(HandPercept("none", seen=True)))
     assert executor._target_xy("glass") == (-0.12, -0.03)
+
+
+def _frames(executor, hands, t0=10.0):
+    executor._hand_seen.clear()
+    for k, h in enumerate(hands):
+        p = _percept(h)
+        p.t = t0 + 0.1 * k
+        executor.see(p)
+
+
+def _hand(posture, grip_x, end_x, held_out=None, hidden=False):
+    """A hand whose posture read places its grip at ``grip_x`` and whose end is seen at ``end_x``."""
+    held = posture in ("grasp_ag", "grasp_sg") if held_out is None else held_out
+    return HandPercept(posture, (grip_x, 0.1, 0.24), object_in_hand="glass" if held else None, held_out=held,
+                       end=(end_x, 0.1, 0.24), end_hidden=hidden)
+
+
+def test_a_still_hand_whose_posture_flickers_still_holds_out(executor):
+    # the posture read flickers (each class puts the grip elsewhere) and the robot's approaching hand
+    # hides the end in some frames: the hand's end, where seen, has not moved
+    hands = []
+    for k in range(10):
+        if k % 3 == 2:
+            hands.append(_hand("grasp_ag", -0.14, -0.145, hidden=True))     # end cut short by the robot's hand
+        else:
+            hands.append(_hand("pointing" if k % 2 else "remove_stopper", -0.06 - 0.03 * (k % 2), -0.095))
+    _frames(executor, hands)
+    assert executor._offered()
+
+
+def test_a_hand_drawing_back_no_longer_holds_out(executor):
+    hands = [_hand("reach", -0.10 - 0.02 * k, -0.10 - 0.02 * k, held_out=False) for k in range(10)]
+    _frames(executor, hands)
+    assert not executor._offered()
+    _frames(executor, [_hand("pour", -0.1, -0.1, held_out=False)] + [_hand("grasp_ag", -0.1, -0.1)] * 9)
+    assert not executor._offered()

@@ -25,7 +25,13 @@ oracle in `assistbot.cognition.oracle`):
   (fingers at the bottle's stopper), "pour" (bottle tilted over the glass),
   "drink" (glass at the mouth). ``held_out``: the hand (with
   ``object_in_hand``) is extended toward the robot. ``seen=False``: the hand
-  was not found (no evidence either way).
+  was not found (no evidence either way). ``position`` is where the posture
+  read holds things (its grip point); ``end`` is where the hand's end is seen,
+  whatever posture it is read as, so a hand kept still stays still in ``end``
+  while a posture that flickers between classes moves ``position``.
+  ``end_hidden``: the hand's skin ends on the robot's own arm in a camera, so
+  its end seen falls short and its outline (the posture read) is partly the
+  robot's.
 - ``robot``: proprioception. ``holding``: the object in the gripper or None;
   ``action``: the AEL action being executed or just ended (or None);
   ``status``: "idle" | "running" | "finished" | "failed". A percept with
@@ -94,6 +100,12 @@ class HandPercept:
     pointed_at: str | None = None
     confidence: float = 1.0
     seen: bool = True
+    end: tuple[float, float, float] | None = None   # None: the same as ``position``
+    end_hidden: bool = False
+
+    def __post_init__(self) -> None:
+        if self.end is None:
+            self.end = self.position
 
     def validate(self) -> None:
         if self.posture not in HAND_POSTURES:

@@ -151,15 +151,19 @@ class RobotExecutor:
         show the hand say: none shows it pouring or drinking, and it has kept still (within STILL_HAND), or
         most of them show it held out. A hand on its way (lifting the bottle to pour, say) passes through
         the hand-over zone and may be seen held out in a frame or two; a hand holding out keeps still, at
-        the zone's edge too, and its posture flickers between classes from frame to frame. A hand not
-        seen at all (often hidden by the robot's own arm) is given the benefit of the doubt."""
-        frames = [h for _, h in self._hand_seen]
+        the zone's edge too, and its posture flickers between classes from frame to frame (so stillness is
+        read from the hand's end, which the posture read does not move: most frames within STILL_HAND of
+        their median). A hand not seen at all, or whose end the robot's own arm hides (its approaching
+        hand, mostly: the end seen then falls short and the outline is partly the robot's), is given the
+        benefit of the doubt."""
+        frames = [h for _, h in self._hand_seen if not h.end_hidden]
         if not frames:
             return True
         if any(h.posture in USING for h in frames):
             return False
-        pos = np.array([h.position for h in frames], float)
-        still = float(np.ptp(pos, axis=0).max()) <= STILL_HAND
+        ends = np.array([h.end for h in frames], float)
+        near = np.abs(ends - np.median(ends, axis=0)).max(axis=1) <= STILL_HAND
+        still = 2 * int(near.sum()) > len(frames)
         return still or 2 * sum(h.held_out for h in frames) >= len(frames)
 
     def _seen_elsewhere(self) -> bool:

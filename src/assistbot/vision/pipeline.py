@@ -191,7 +191,8 @@ class Vision:
         posture, conf = hand.classes[c], float(pr[c])
         X = h.position + self.hand_offset.get(posture, np.zeros(3))
         seen_objs = {n: np.array(o.position) for n, o in p.objects.items() if o.seen}
-        hp = HandPercept(posture=posture, position=tuple(round(float(v), 4) for v in X), confidence=round(conf, 3))
+        hp = HandPercept(posture=posture, position=tuple(round(float(v), 4) for v in X), confidence=round(conf, 3),
+                         end=tuple(round(float(v), 4) for v in h.position), end_hidden=bool(h.end_on_robot))
         target = {"remove_stopper": "bottle", "pour": "bottle", "drink": "glass"}.get(posture)
         if target:
             hp.directed_at = target
