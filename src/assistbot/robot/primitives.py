@@ -429,10 +429,14 @@ class Primitive:
             status, reason = Status.FAILED, f"{phase.name}: the {self.object} is not in the hand (seen away from it)"
         elif status is Status.RUNNING and self._failure is None and (why := self.interrupted(phase)):
             status, reason = Status.FAILED, f"{phase.name}: {why}"
-        if status is Status.FAILED and phase.fallback is not None and self._failure is None:
+        fallback = phase.fallback
+        if fallback is None and self.carrying and self.robot.gripper.grasps():
+            # whatever failed, nothing stays in the hand: the next action may start by opening it
+            fallback = _set_down_what_is_carried
+        if status is Status.FAILED and fallback is not None and self._failure is None:
             # end safely first, then report
             self._failure = Progress(Status.FAILED, phase.name, reason, self._t_total)
-            self._phases = self._phases[:self._k + 1] + phase.fallback(self)
+            self._phases = self._phases[:self._k + 1] + fallback(self)
             status = Status.SUCCEEDED
         if status is Status.FAILED:
             self.progress = Progress(Status.FAILED, phase.name, reason, self._t_total)
@@ -691,13 +695,14 @@ def free_rws_spot(p: "Primitive") -> np.ndarray:
     return put_down_spot(p.robot.shoulder, REACH, HOLD_OUT_XY, standing, GRASP_HEIGHT.get(p.object, GRASP_HEIGHT["held_out"]))
 
 
-def _put_down_at(xy_of: Callable[[Primitive], np.ndarray], lift: float = LIFT) -> list[Phase]:
-    """Carry the held object (upright) above a table spot, lower it onto the table, let go, back off."""
+def _put_down_at(xy_of: Callable[[Primitive], np.ndarray], lift: float = LIFT, roll: float = 0.0) -> list[Phase]:
+    """Carry the held object (upright) above a table spot, lower it onto the table, let go, back off;
+    the hand rolled by ``roll`` about its approach axis (pi: as after turning the glass in it)."""
 
     def at(p, up):
         x, y = xy_of(p)
         c = np.array([x, y, TABLE_Z + GRASP_HEIGHT[p.object] + up])
-        return _grasp_pose_at(p, c, p.object)
+        return _grasp_pose_at(p, c, p.object, roll=roll)
     return [
         CarryOver(lambda p: at(p, lift)),
         Move("carry", lambda p: at(p, lift), duration=1.8),
@@ -707,6 +712,14 @@ def _put_down_at(xy_of: Callable[[Primitive], np.ndarray], lift: float = LIFT) -
         _Open("release"), _Carry(False),
         BackOff(),
     ]
+
+
+def _set_down_what_is_carried(p: Primitive) -> list[Phase]:
+    """A failed action's safe end while the hand holds something: put it down at a free spot in the RWS,
+    upright as it is held (the hand keeps its half turn: a glass turned in the hand stays the right way
+    up), and withdraw."""
+    hand_up = p.robot.commanded_tcp_pose().rotation().as_matrix()[2, 2]
+    return _put_down_at(free_rws_spot, roll=0.0 if hand_up >= 0.0 else math.pi) + _retract()
 
 
 class LowerUntilSupported(Phase):
