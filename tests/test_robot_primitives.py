@@ -258,6 +258,43 @@ def test_hand_over_without_a_taker_fails_with_a_reason():
     assert_safe(s)
 
 
+class _GraspThenReachTooFar(P.Primitive):
+    """Grasp and lift the target, then carry it toward a goal out of the arm's reach: a failure while carrying."""
+
+    name = "grasp_then_reach_too_far"
+
+    def phases(self):
+        from assistbot.robot import poses
+
+        far = poses.pose(mink.SO3.identity(), np.array([-0.45, -0.35, 0.95]))
+        return P._reach_and_grasp(self) + [
+            P.Move("lift", lambda p: P._side_grasp_pose(p, up=P.LIFT), duration=1.2),
+            P.Move("too far", lambda p: far, duration=1.5),
+        ]
+
+
+def test_an_action_failing_while_carrying_sets_the_object_down_before_it_reports():
+    w, robot = make("HWS:closed", "RWS:empty@0.20,-0.10")
+    pr, s = run(w, _GraspThenReachTooFar(robot, "glass"), body_xy(w, "glass"), seconds=40.0)
+    assert pr.status is Status.FAILED and "out of reach" in pr.reason, pr.reason
+    settle(w, 0.5)
+    st = w.state()
+    assert st.robot_holds is None and not robot.gripper.grasps()
+    assert upright(w, "glass") and st.objects["glass"].zone == "RWS", st.summary()
+    assert w.data.xpos[w.body_id["glass"]][2] < 0.76  # standing on the table, not dropped from the air
+    assert_safe(s)
+
+
+def test_a_turned_glass_not_taken_is_set_down_upright():
+    w, robot = make("HWS:closed", "RWS:inverted@0.18,-0.08")
+    pr, s = run(w, P.TurnAndHandOver(robot, "glass", timeout=3.0), body_xy(w, "glass"), seconds=60.0)
+    assert pr.status is Status.FAILED and "did not take" in pr.reason, pr.reason
+    settle(w, 0.5)
+    st = w.state()
+    assert st.robot_holds is None and upright(w, "glass"), st.summary()
+    assert_safe(s)
+
+
 # --------------------------------------------------------------------------- receiving from the human
 @pytest.mark.parametrize("obj, arrangement", [("bottle", ("HWS:closed@-0.22,-0.12", "RWS:empty")),
                                               ("glass", ("RWS:closed@0.2,0.2", "HWS:empty@-0.20,0.05"))])

@@ -695,14 +695,20 @@ def free_rws_spot(p: "Primitive") -> np.ndarray:
     return put_down_spot(p.robot.shoulder, REACH, HOLD_OUT_XY, standing, GRASP_HEIGHT.get(p.object, GRASP_HEIGHT["held_out"]))
 
 
-def _put_down_at(xy_of: Callable[[Primitive], np.ndarray], lift: float = LIFT, roll: float = 0.0) -> list[Phase]:
-    """Carry the held object (upright) above a table spot, lower it onto the table, let go, back off;
-    the hand rolled by ``roll`` about its approach axis (pi: as after turning the glass in it)."""
+def _half_turn(p: Primitive) -> float:
+    """The hand's roll about its approach axis to the nearest half turn: 0, or pi once it has turned the
+    glass in it. Carried either way, what it holds stands upright."""
+    return 0.0 if p.robot.commanded_tcp_pose().rotation().as_matrix()[2, 2] >= 0.0 else math.pi
+
+
+def _put_down_at(xy_of: Callable[[Primitive], np.ndarray], lift: float = LIFT) -> list[Phase]:
+    """Carry the held object (upright, the hand keeping its half turn) above a table spot, lower it onto
+    the table, let go, back off."""
 
     def at(p, up):
         x, y = xy_of(p)
         c = np.array([x, y, TABLE_Z + GRASP_HEIGHT[p.object] + up])
-        return _grasp_pose_at(p, c, p.object, roll=roll)
+        return _grasp_pose_at(p, c, p.object, roll=_half_turn(p))
     return [
         CarryOver(lambda p: at(p, lift)),
         Move("carry", lambda p: at(p, lift), duration=1.8),
@@ -715,11 +721,9 @@ def _put_down_at(xy_of: Callable[[Primitive], np.ndarray], lift: float = LIFT, r
 
 
 def _set_down_what_is_carried(p: Primitive) -> list[Phase]:
-    """A failed action's safe end while the hand holds something: put it down at a free spot in the RWS,
-    upright as it is held (the hand keeps its half turn: a glass turned in the hand stays the right way
-    up), and withdraw."""
-    hand_up = p.robot.commanded_tcp_pose().rotation().as_matrix()[2, 2]
-    return _put_down_at(free_rws_spot, roll=0.0 if hand_up >= 0.0 else math.pi) + _retract()
+    """A failed action's safe end while the hand holds something: put it down at a free spot in the RWS
+    and withdraw."""
+    return _put_down_at(free_rws_spot) + _retract()
 
 
 class LowerUntilSupported(Phase):
