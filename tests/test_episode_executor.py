@@ -71,3 +71,14 @@ def test_a_hand_drawing_back_no_longer_holds_out(executor):
     assert not executor._offered()
     _frames(executor, [_hand("pour", -0.1, -0.1, held_out=False)] + [_hand("grasp_ag", -0.1, -0.1)] * 9)
     assert not executor._offered()
+
+
+def test_a_hand_that_has_just_poured_is_not_offering(executor):
+    # poured, then holds the bottle still a moment above the table on its way to put it down
+    executor._used_at = -float("inf")
+    _frames(executor, [_hand("pour", -0.1, -0.1, held_out=False)], t0=10.0)
+    _frames(executor, [_hand("reach", -0.13, -0.13, held_out=False)] * 15, t0=10.1)
+    assert not executor._offered()
+    # held still long after the pour: that is holding out
+    _frames(executor, [_hand("grasp_ag", -0.13, -0.13)] * 10, t0=14.0)
+    assert executor._offered()

@@ -38,6 +38,8 @@ OFFER_WINDOW = 1.0
 STILL_HAND = 0.02
 #: postures in which the hand uses what it holds for itself
 USING = ("pour", "drink")
+#: s after the hand was last seen pouring or drinking in which it offers nothing: it first puts down what it used
+AFTER_USE = 3.0
 
 
 @dataclass
@@ -72,6 +74,7 @@ class RobotExecutor:
         self._away_since: float | None = None   # since when what the hand believes it holds is seen elsewhere
         self._lost = False                       # ... long enough: this action's grasp is not of it
         self._hand_seen: deque[tuple[float, HandPercept]] = deque()   # the frames of the last OFFER_WINDOW showing the hand
+        self._used_at = -float("inf")   # when the hand was last seen using what it holds (`USING`)
 
     # -- what the robot knows of its own body ------------------------------------------------
     def holding(self) -> str | None:
@@ -148,19 +151,20 @@ class RobotExecutor:
 
     def _offered(self) -> bool:
         """The person still holds something out to the robot, as the frames of the last OFFER_WINDOW that
-        show the hand say: none shows it pouring or drinking, and it has kept still (within STILL_HAND), or
-        most of them show it held out. A hand on its way (lifting the bottle to pour, say) passes through
+        show the hand say: it has kept still (within STILL_HAND), or most of them show it held out; and
+        none of the last AFTER_USE s showed it pouring or drinking (a hand that has just poured holds the
+        bottle still above the table a moment, on its way to put it down). A hand on its way (lifting the bottle to pour, say) passes through
         the hand-over zone and may be seen held out in a frame or two; a hand holding out keeps still, at
         the zone's edge too, and its posture flickers between classes from frame to frame (so stillness is
         read from the hand's end, which the posture read does not move: most frames within STILL_HAND of
         their median). A hand not seen at all, or whose end the robot's own arm hides (its approaching
         hand, mostly: the end seen then falls short and the outline is partly the robot's), is given the
         benefit of the doubt."""
+        if self._percept is not None and self._percept.t - self._used_at < AFTER_USE:
+            return False
         frames = [h for _, h in self._hand_seen if not h.end_hidden]
         if not frames:
             return True
-        if any(h.posture in USING for h in frames):
-            return False
         ends = np.array([h.end for h in frames], float)
         near = np.abs(ends - np.median(ends, axis=0)).max(axis=1) <= STILL_HAND
         still = 2 * int(near.sum()) > len(frames)
@@ -244,6 +248,8 @@ class RobotExecutor:
             self._held_out_name = h.object_in_hand
         if h.seen:
             self._hand_seen.append((percept.t, h))
+            if h.posture in USING and not h.end_hidden:
+                self._used_at = percept.t
         while self._hand_seen and self._hand_seen[0][0] <= percept.t - OFFER_WINDOW:
             self._hand_seen.popleft()
         held = percept.objects.get(h.object_in_hand) if h.seen and h.object_in_hand else None
