@@ -337,6 +337,28 @@ def test_receive_does_not_reach_in_while_the_person_is_not_holding_it_out():
     assert_safe(s)
 
 
+def test_receive_leaves_the_object_to_a_person_who_does_not_let_go():
+    """Both hold it and the person keeps holding: after the wait the robot's hand opens and withdraws,
+    the object stays in the person's hand (no tug of war, nothing carried off)."""
+    w, robot = make("HWS:closed@-0.22,-0.12", "RWS:empty")
+    human = HumanController(w, "passive")
+    human.start("hand_to_robot", object="bottle", grip="ag")
+    while not (w.human_holding() == "bottle" and human.arm.arrived(w.time, 0.03)) and w.time < 10.0:
+        settle(w, CONTROL_DT, human)
+    hand = w.model.site("human_r_grasp").id
+    prim = P.Receive(robot, "bottle", human_holds=lambda: w.human_holding() is not None, lifted=body_lift(w, "bottle"),
+                     locate=lambda name: body_xy(w, name)(), timeout=3.0)
+
+    def person(t):   # from the robot's grasp on the person no longer acts: the arm stays, the grip stays shut
+        if not robot.gripper.grasps():
+            human.tick(t)
+
+    pr, s = run(w, prim, lambda: tuple(w.data.site_xpos[hand][:2]), seconds=60.0, each_tick=person)
+    assert pr.status is Status.FAILED and "did not let go" in pr.reason, pr.reason
+    assert w.human_holding() == "bottle" and not robot.gripper.grasps()
+    assert_safe(s)
+
+
 @pytest.mark.parametrize("obj", ["glass", "bottle", "held_out"])
 def test_an_object_held_up_is_grasped_where_the_whole_hand_lies_on_its_wall(obj):
     """The palm above the object's base and the upper finger below its wall's top (the glass's rim, the

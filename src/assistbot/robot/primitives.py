@@ -720,6 +720,14 @@ def _put_down_at(xy_of: Callable[[Primitive], np.ndarray], lift: float = LIFT) -
     ]
 
 
+def _waiting_for_the_person_to_let_go(timeout: float) -> WaitFor:
+    """Both hold the object: wait until the person lets go. Not let go in time, it stays theirs: the hand
+    opens and withdraws (no tug of war)."""
+    wait = WaitFor("wait for the human to let go", lambda p: not p.human_holds(), timeout, "the human did not let go")
+    wait.fallback = lambda p: [_Open("leave it to the person"), _Carry(False), BackOff(), *_retract()]
+    return wait
+
+
 def _set_down_what_is_carried(p: Primitive) -> list[Phase]:
     """A failed action's safe end while the hand holds something: put it down at a free spot in the RWS
     and withdraw."""
@@ -1076,7 +1084,7 @@ class HoldBottleForStopper(Primitive):
         if self.xy()[0] < 0.0:  # held out by the human
             return _reach_and_grasp(self, held_up=True) + [
                 Wait("hold", 1.5),
-                WaitFor("wait for the human to let go", lambda p: not p.human_holds(), 10.0, "the human did not let go"),
+                _waiting_for_the_person_to_let_go(10.0),
                 *hold,
                 *_put_down_at(lambda p: p._home()),
                 *_retract(),
@@ -1218,8 +1226,7 @@ class Receive(Primitive):
         approach.fallback = lambda p: [BackOff("back off from the hand", distance=0.16)]
         return reach + [
             Wait("hold", 1.5),  # the human feels the robot's grip before letting go
-            WaitFor("wait for the human to let go", lambda p: not p.human_holds(), self.timeout,
-                    "the human did not let go"),
+            _waiting_for_the_person_to_let_go(self.timeout),
             Relative("take back", [0.06, 0.0, 0.03], duration=1.0),
             *_put_down_at(lambda p: p.free_spot()),
             *_retract(),
