@@ -429,15 +429,16 @@ class Primitive:
             status, reason = Status.FAILED, f"{phase.name}: the {self.object} is not in the hand (seen away from it)"
         elif status is Status.RUNNING and self._failure is None and (why := self.interrupted(phase)):
             status, reason = Status.FAILED, f"{phase.name}: {why}"
-        fallback = phase.fallback
-        if fallback is None and self.carrying and self.robot.gripper.grasps():
-            # whatever failed, nothing stays in the hand: the next action may start by opening it
-            fallback = _set_down_what_is_carried
-        if status is Status.FAILED and fallback is not None and self._failure is None:
-            # end safely first, then report
-            self._failure = Progress(Status.FAILED, phase.name, reason, self._t_total)
-            self._phases = self._phases[:self._k + 1] + fallback(self)
-            status = Status.SUCCEEDED
+        if status is Status.FAILED and self._failure is None:
+            fallback = phase.fallback
+            if fallback is None and self.carrying and self.robot.gripper.grasps():
+                # whatever failed, nothing stays in the hand: the next action may start by opening it
+                fallback = _set_down_what_is_carried
+            if fallback is not None:
+                # end safely first, then report
+                self._failure = Progress(Status.FAILED, phase.name, reason, self._t_total)
+                self._phases = self._phases[:self._k + 1] + fallback(self)
+                status = Status.SUCCEEDED
         if status is Status.FAILED:
             self.progress = Progress(Status.FAILED, phase.name, reason, self._t_total)
         elif status is Status.SUCCEEDED:
