@@ -43,6 +43,15 @@ def settle(w, seconds=1.0, human=None):
         w.step(10)
 
 
+def _holding_out(w, obj):
+    """A passive person running their own `hand_to_robot`: grasps ``obj`` and holds it out (settled there)."""
+    human = HumanController(w, "passive")
+    human.start("hand_to_robot", object=obj, grip="ag")
+    while not (w.human_holding() == obj and human.arm.arrived(w.time, 0.03)) and w.time < 10.0:
+        settle(w, CONTROL_DT, human)
+    return human
+
+
 # --------------------------------------------------------------------------- turn, place, pour
 @pytest.mark.parametrize("xy", ["0.15,0.10", "0.22,-0.15"])
 def test_turn_glass_ends_upright_in_rws(xy):
@@ -139,10 +148,7 @@ def test_the_scripted_human_pulls_the_stopper_off_the_bottle_the_robot_holds():
 
 def test_bottle_held_out_by_the_human_is_taken_and_held_for_the_stopper():
     w, robot = make("HWS:closed@-0.22,-0.12", "RWS:empty")
-    human = HumanController(w, "passive")
-    human.start("hand_to_robot", object="bottle", grip="ag")
-    while not (w.human_holding() == "bottle" and human.arm.arrived(w.time, 0.03)) and w.time < 10.0:
-        settle(w, CONTROL_DT, human)
+    human = _holding_out(w, "bottle")
     prim = P.HoldBottleForStopper(robot, human_holds=lambda: w.human_holding() == "bottle",
                                   stopper_removed=lambda: not w.data.eq_active[w.eq_stopper], lifted=body_lift(w, "bottle"),
                                   locate=lambda name: body_xy(w, name)())
@@ -301,10 +307,7 @@ def test_a_turned_glass_not_taken_is_set_down_upright():
 def test_receive_takes_the_object_from_the_human_hand_and_puts_it_in_rws(obj, arrangement):
     """The scripted human's own `hand_to_robot`: grasp, hold out, let go once the robot holds it."""
     w, robot = make(*arrangement)
-    human = HumanController(w, "passive")
-    human.start("hand_to_robot", object=obj, grip="ag")
-    while not (w.human_holding() == obj and human.arm.arrived(w.time, 0.03)) and w.time < 10.0:
-        settle(w, CONTROL_DT, human)
+    human = _holding_out(w, obj)
     assert w.human_holding() == obj
     hand = w.model.site("human_r_grasp").id
     prim = P.Receive(robot, obj, human_holds=lambda: w.human_holding() is not None, lifted=body_lift(w, obj),
@@ -323,10 +326,7 @@ def test_receive_does_not_reach_in_while_the_person_is_not_holding_it_out():
     """Seen doing something else with it (pouring, say): the hand waits beside the person's, then the
     action fails with the reason; nothing is grasped and the object stays in the person's hand."""
     w, robot = make("HWS:closed@-0.22,-0.12", "RWS:empty")
-    human = HumanController(w, "passive")
-    human.start("hand_to_robot", object="bottle", grip="ag")
-    while not (w.human_holding() == "bottle" and human.arm.arrived(w.time, 0.03)) and w.time < 10.0:
-        settle(w, CONTROL_DT, human)
+    human = _holding_out(w, "bottle")
     hand = w.model.site("human_r_grasp").id
     prim = P.Receive(robot, "bottle", human_holds=lambda: w.human_holding() is not None, lifted=body_lift(w, "bottle"),
                      locate=lambda name: body_xy(w, name)(), offered=lambda: False)
@@ -341,10 +341,7 @@ def test_receive_leaves_the_object_to_a_person_who_does_not_let_go():
     """Both hold it and the person keeps holding: after the wait the robot's hand opens and withdraws,
     the object stays in the person's hand (no tug of war, nothing carried off)."""
     w, robot = make("HWS:closed@-0.22,-0.12", "RWS:empty")
-    human = HumanController(w, "passive")
-    human.start("hand_to_robot", object="bottle", grip="ag")
-    while not (w.human_holding() == "bottle" and human.arm.arrived(w.time, 0.03)) and w.time < 10.0:
-        settle(w, CONTROL_DT, human)
+    human = _holding_out(w, "bottle")
     hand = w.model.site("human_r_grasp").id
     prim = P.Receive(robot, "bottle", human_holds=lambda: w.human_holding() is not None, lifted=body_lift(w, "bottle"),
                      locate=lambda name: body_xy(w, name)(), timeout=3.0)
