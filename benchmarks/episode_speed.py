@@ -40,9 +40,9 @@ def main() -> None:
                     help="a parameter override as for assistbot run, e.g. vision.pipelined=false")
     args = ap.parse_args()
 
+    from assistbot.commands.run import parse_sets
     from assistbot.episode import run_scenario
     from assistbot.episode.runner import Episode
-    from assistbot.commands.run import parse_sets
     from assistbot.scenario import load_scenario
     from assistbot.world import build_world
 

@@ -12,7 +12,6 @@ import time
 
 import numpy as np
 
-
 #: CPU time of this thread: on a shared machine the time the process waits for a core is not
 #: the controller's cost (wall-clock figures swing 3x with the load of other jobs)
 _clock = time.thread_time

@@ -99,8 +99,7 @@ def bench_primitives() -> list[tuple[str, str, float, float, float, float]]:
     from assistbot.robot.controller import RobotController
     from assistbot.robot.primitives import Status
     from assistbot.robot.sim import CONTROL_DT, body_xy
-    from assistbot.world import build_world
-    from assistbot.world import Arrangement
+    from assistbot.world import Arrangement, build_world
 
     rows = []
     for name, bottle, glass, make, obj, extra in _cases():

@@ -47,8 +47,8 @@ def test_fields_demo_writes_its_plots(tmp_path, capsys):
 
 
 def test_field_error_from_a_command_becomes_one_line(monkeypatch, capsys):
-    from assistbot.fields import FieldError
     import assistbot.fields.demo as demo
+    from assistbot.fields import FieldError
 
     def broken(*_a, **_k):
         raise FieldError("field 'X'", "tau", "must be > 0, got -1")

@@ -17,8 +17,8 @@ from assistbot.robot.actions import ACTION_PRIMITIVES, NOT_YET_PHYSICAL
 from assistbot.robot.controller import HANDOVER_DEPTH, RobotController
 from assistbot.robot.primitives import Status
 from assistbot.robot.sim import CONTROL_DT, body_lift, body_xy, run
-from assistbot.world import Arrangement, build_world
 from assistbot.task.drinking import ROBOT_ACTIONS
+from assistbot.world import Arrangement, build_world
 
 
 def make(bottle: str, glass: str):

@@ -17,8 +17,8 @@ from pathlib import Path
 
 import pytest
 
-from assistbot.sweep.results import VOLATILE, read_rows
 from _scenarios import TINY
+from assistbot.sweep.results import VOLATILE, read_rows
 
 SWEEP = ["--param", "cognition.k=0.8,1.2", "--param", "human.reaction_delay=0.2:1:2", "--seeds", "2",
          "--perception", "oracle", "--workers", "2", "--no-progress"]

@@ -14,8 +14,8 @@ import pytest
 
 pytest.importorskip("ray")
 
+from _scenarios import TINY  # noqa: E402
 from assistbot.sweep.results import VOLATILE, read_rows  # noqa: E402
-from _scenarios import TINY
 
 SWEEP = ["--param", "cognition.k=0.8,1.2,1.6", "--seeds", "2", "--perception", "oracle", "--no-progress"]
 

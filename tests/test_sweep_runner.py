@@ -4,11 +4,10 @@ from __future__ import annotations
 
 import pytest
 
+from _scenarios import TINY
 from assistbot.errors import UserError
 from assistbot.sweep import Param, SweepSpec, build_jobs, run_sweep
 from assistbot.sweep.results import read_rows
-from _scenarios import TINY
-
 
 
 class FakeExecutor:

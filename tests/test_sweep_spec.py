@@ -8,13 +8,12 @@ import sys
 
 import pytest
 
+from _scenarios import TINY
 from assistbot.errors import UserError
 from assistbot.sweep import Param, SweepSpec, build_jobs, job_id, parse_seeds, parse_values
 from assistbot.sweep.results import ResultStore, columns_for, read_rows
 from assistbot.sweep.spec import load_sweep_file
 from assistbot.sweep.stats import mean_ci, wilson
-from _scenarios import TINY
-
 
 
 @pytest.fixture

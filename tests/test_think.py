@@ -50,6 +50,7 @@ def test_missing_file_and_bad_config_path_are_exit_2(tmp_path, capsys):
     assert err.count("\n") == 1 and "fields.AEL.hh" in err
     assert main(["think", str(TIMELINES / "fig4.yaml"), "--no-figures", "--out", str(tmp_path), "--set", "k"]) == 2
     bad_cfg = tmp_path / "cfg.yaml"
-    bad_cfg.write_text("name: x\nduration: 1\nconfig: {'couplings.IL->AEL.table.Wait.Nope': 1}\nevents:\n  - {t: 0, hand: {posture: none}}\n")
+    bad_cfg.write_text("name: x\nduration: 1\nconfig: {'couplings.IL->AEL.table.Wait.Nope': 1}\n"
+                       "events:\n  - {t: 0, hand: {posture: none}}\n")
     assert main(["think", str(bad_cfg), "--no-figures", "--out", str(tmp_path)]) == 2
     assert "Nope" in capsys.readouterr().err

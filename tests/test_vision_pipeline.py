@@ -81,6 +81,7 @@ def test_object_behind_the_robot_arm_is_unseen_or_in_place_not_misplaced(seed, n
     stands.  (1, bottle, -0.06) hides the base in both cameras: before vision knew where its own arm
     is, the arm's edge under the bottle was placed on the table and the bottle reported 6 cm too far."""
     import mujoco
+
     from assistbot.world import layout
     from assistbot.world.render import SEGMENT_LABELS
     from assistbot.world.scripted import ik
@@ -246,6 +247,7 @@ def test_turning_scene_holds_the_inverted_glass_mid_turn_in_a_side_grip():
     """The person's turn-glass behaviour, posed: the glass lifted in the hand and rolled part of the way;
     its state label is WorldState's: inverted while the glass points within 45 deg of down, then not."""
     import dataclasses
+
     from assistbot.human.behaviours import TURN_LIFT
     from assistbot.world import Arrangement, Placement
     w = build_world(PAPER_ARRANGEMENTS["fig3"], 0)
@@ -367,6 +369,7 @@ def test_accuracy_by_confidence_sorts_each_report_into_its_band():
 
 def test_finger_parts_find_one_long_thin_finger_not_fingers_held_together():
     import cv2
+
     from assistbot.vision.detect import finger_parts
     palm = np.zeros((40, 40), np.uint8)
     cv2.circle(palm, (12, 20), 8, 1, -1)
@@ -386,6 +389,7 @@ def test_compiled_hand_features_are_opencvs_bit_for_bit():
     values as OpenCV's Sobel/cartToPolar and morphologyEx/connectedComponents, on random masks and
     crops (every gradient direction, pieces of every shape)."""
     import cv2
+
     from assistbot.vision import segment
     from assistbot.vision.detect import finger_parts, outline_hog
     if segment._kernels is None:
@@ -407,6 +411,7 @@ def test_robot_arm_image_is_the_same_compiled_or_not(monkeypatch):
     """`RobotBody.covers` (the arm's capsules in a camera's image) gives the same answers from its
     numba kernel and from numpy, over random arm poses and pixels that it covers and that it does not."""
     import mujoco
+
     from assistbot.vision import segment
     from assistbot.vision.body import RobotBody
     if segment._kernels is None:
@@ -435,6 +440,7 @@ def test_robot_body_covers_the_arms_pixels_in_the_render():
     """The capsules stand for the arm as the renderer draws it: most of the arm's rendered pixels
     (segmentation label "robot", the base left out) lie on them, and most of their pixels are arm."""
     import mujoco
+
     from assistbot.vision.body import RobotBody
     from assistbot.world.render import SEGMENT_LABELS
     from assistbot.world.scripted import ik

@@ -8,7 +8,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from assistbot.world import Arrangement, ROBOT_ARM_JOINTS, build_world
+from assistbot.world import ROBOT_ARM_JOINTS, Arrangement, build_world
 from assistbot.world.scripted import ik, ramp
 
 I3 = np.eye(3)
@@ -45,7 +45,8 @@ def test_robot_holds_by_friction_through_lift_and_pour_tilt(obj, arrangement):
     w = build_world(Arrangement.from_options(*arrangement))
     m = w.model
     welds = [i for i in range(m.neq) if m.eq_type[i] in (0, 1)]  # connect, weld: none touches the robot
-    assert not any(m.body(int(m.eq_obj1id[i])).name.startswith("robot") or m.body(int(m.eq_obj2id[i])).name.startswith("robot") for i in welds)
+    assert not any(m.body(int(m.eq_obj1id[i])).name.startswith("robot") or m.body(int(m.eq_obj2id[i])).name.startswith("robot")
+                   for i in welds)
     start = w.data.xpos[w.body_id[obj]].copy()
     at = _robot_grasp(w, obj)
     r0 = _in_tcp(w, obj)

@@ -5,7 +5,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from assistbot.world import Arrangement, CAMERAS, build_world
+from assistbot.world import CAMERAS, Arrangement, build_world
 from assistbot.world.render import SEGMENT_LABELS, Renderer
 
 LABEL = {v: k for k, v in SEGMENT_LABELS.items()}

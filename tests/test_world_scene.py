@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 from assistbot.errors import UserError
-from assistbot.world import Arrangement, PAPER_ARRANGEMENTS, all_arrangements, build_world, layout
+from assistbot.world import PAPER_ARRANGEMENTS, Arrangement, all_arrangements, build_world, layout
 from assistbot.world.world import CAMERAS, HUMAN_ARM_JOINTS, ROBOT_ARM_JOINTS
 
 
@@ -63,10 +63,14 @@ def test_explicit_position_is_used():
     ({"bottle": {"zone": "XWS", "state": "closed"}, "glass": {"zone": "HWS", "state": "empty"}}, "objects.bottle.zone"),
     ({"bottle": {"zone": "HWS", "state": "corked"}, "glass": {"zone": "HWS", "state": "empty"}}, "objects.bottle.state"),
     ({"bottle": {"zone": "HWS", "state": "closed"}, "glass": {"zone": "HWS", "state": "upside"}}, "objects.glass.state"),
-    ({"bottle": {"zone": "HWS", "state": "closed", "position": [-0.2, 0.9]}, "glass": {"zone": "RWS", "state": "empty"}}, "objects.bottle.position"),
-    ({"bottle": {"zone": "HWS", "state": "closed", "position": [0.2, 0.0]}, "glass": {"zone": "RWS", "state": "empty"}}, "objects.bottle.position"),
-    ({"bottle": {"zone": "HWS", "state": "closed"}, "glass": {"zone": "RWS", "state": "empty", "position": [-0.1, 0]}}, "objects.glass.position"),
-    ({"bottle": {"zone": "HWS", "state": "closed"}, "glass": {"zone": "HWS", "state": "empty", "position": [-0.22, -0.1]}}, "objects.glass.position"),
+    ({"bottle": {"zone": "HWS", "state": "closed", "position": [-0.2, 0.9]}, "glass": {"zone": "RWS", "state": "empty"}},
+     "objects.bottle.position"),
+    ({"bottle": {"zone": "HWS", "state": "closed", "position": [0.2, 0.0]}, "glass": {"zone": "RWS", "state": "empty"}},
+     "objects.bottle.position"),
+    ({"bottle": {"zone": "HWS", "state": "closed"}, "glass": {"zone": "RWS", "state": "empty", "position": [-0.1, 0]}},
+     "objects.glass.position"),
+    ({"bottle": {"zone": "HWS", "state": "closed"}, "glass": {"zone": "HWS", "state": "empty", "position": [-0.22, -0.1]}},
+     "objects.glass.position"),
     ({"bottle": {"zone": "HWS", "state": "closed"}}, "objects.glass"),
     ({"bottle": {"zone": "HWS", "state": "closed", "colour": "red"}, "glass": {"zone": "HWS", "state": "empty"}}, "objects.bottle.colour"),
 ])

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from assistbot.world import Arrangement, HUMAN_ARM_JOINTS, ROBOT_ARM_JOINTS, STOPPER_RELEASE_FORCE, build_world
+from assistbot.world import HUMAN_ARM_JOINTS, ROBOT_ARM_JOINTS, STOPPER_RELEASE_FORCE, Arrangement, build_world
 from assistbot.world.scripted import ik, ramp
 
 I3 = np.eye(3)

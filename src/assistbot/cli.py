@@ -17,7 +17,6 @@ from typing import Sequence
 from assistbot.errors import UserError
 
 
-
 def _command_modules() -> list:
     import pkgutil
 

@@ -147,8 +147,9 @@ class Cognition:
         held = percept.robot.holding
         for obj, states in task.OBJECT_STATES.items():
             o = percept.objects.get(obj)
-            zone = "RWS" if held == obj else (o.zone if o is not None else None)
             here, conf = None, 0.0
+            if o is not None:
+                zone = "RWS" if held == obj else o.zone
             if o is not None and o.seen and o.state_seen:
                 here, conf = task.oml_item(obj, o.state, zone), o.confidence
                 self._state_out_of_view.pop(obj, None)
@@ -158,8 +159,9 @@ class Cognition:
                 # once: the memory's peak fades as the object's input moves to the new place)
                 if obj not in self._state_out_of_view:
                     self._state_out_of_view[obj] = self._remembered_state(obj)
-                if self._state_out_of_view[obj] is not None:
-                    here, conf = task.oml_item(obj, self._state_out_of_view[obj], zone), 1.0
+                remembered = self._state_out_of_view[obj]
+                if remembered is not None:
+                    here, conf = task.oml_item(obj, remembered, zone), 1.0
             for st in states:
                 for z in task.ZONES:
                     item = task.oml_item(obj, st, z)

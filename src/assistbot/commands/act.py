@@ -63,10 +63,8 @@ def run(args: argparse.Namespace) -> int:
 
     from assistbot.human.behaviours import HOLD_OUT_BASE_Z
     from assistbot.human.controller import HumanController
-    from assistbot.robot import primitives as P
     from assistbot.robot.controller import RobotController
-    from assistbot.robot.sim import body_xy
-    from assistbot.robot.sim import run as run_primitive
+    from assistbot.robot.sim import body_xy, run as run_primitive
     from assistbot.world import build_world
     from assistbot.world.render import Renderer
 

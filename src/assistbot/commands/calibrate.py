@@ -22,8 +22,8 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
-    from assistbot.vision.calibration import calibrate
     from assistbot.resources import TEMPLATES
+    from assistbot.vision.calibration import calibrate
 
     cal = calibrate(args.seed, args.scenes)
     root = args.out or TEMPLATES

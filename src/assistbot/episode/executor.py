@@ -155,8 +155,8 @@ class RobotExecutor:
         none of the last AFTER_USE s showed it pouring or drinking (a hand that has just poured holds the
         bottle still above the table a moment, on its way to put it down). A hand on its way (lifting the
         bottle to pour, say) passes through the hand-over zone and may be seen held out in a frame or two;
-        a hand holding out keeps still, at the zone's edge too, and its posture flickers between classes from frame to frame (so stillness is
-        read from the hand's end, which the posture read does not move: most frames within STILL_HAND of
+        a hand holding out keeps still, at the zone's edge too, and its posture flickers between classes from frame to frame
+        (so stillness is read from the hand's end, which the posture read does not move: most frames within STILL_HAND of
         their median). A hand not seen at all, or whose end the robot's own arm hides (its approaching
         hand, mostly: the end seen then falls short and the outline is partly the robot's), is given the
         benefit of the doubt."""

@@ -15,7 +15,6 @@ from assistbot.world import TABLE_Z
 from assistbot.world.layout import HANDOVER_ZONE_X
 from assistbot.world.state import standing_end
 
-
 __all__ = ["ORACLE_LABEL", "OraclePerception"]
 
 

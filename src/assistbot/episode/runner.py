@@ -21,12 +21,12 @@ import mujoco
 import numpy as np
 
 from assistbot.cognition import Cognition
-from assistbot.errors import UserError
 from assistbot.episode.executor import RobotExecutor
 from assistbot.episode.judge import Judge
 from assistbot.episode.touch import TouchMonitor
+from assistbot.errors import UserError
 from assistbot.human.controller import HumanController
-from assistbot.human.script import HumanConfig, PARAMS as HUMAN_PARAMS
+from assistbot.human.script import PARAMS as HUMAN_PARAMS, HumanConfig
 from assistbot.scenario import VISION_PARAMS, Scenario, check_vision_value
 from assistbot.speech import SpeechLog
 from assistbot.world import build_world
@@ -203,7 +203,6 @@ class Episode:
     # -- the loop -----------------------------------------------------------------------------------
     def run(self, progress: Callable[[float], None] | None = None) -> EpisodeResult:
         w, wall = self.world, self.wall
-        limit = self.scenario.time_limit
         tick = 0
         t_drink = None
         next_frame = 0.0
@@ -311,7 +310,8 @@ class Episode:
             success=end_reason == "drink", end_reason=end_reason, time=self.world.time, time_to_drink=t_drink,
             decisions=decisions, releases=releases,
             utterances=[u.to_dict() for u in self.speech],
-            human_events=[{"t": round(e.t, 3), "kind": e.kind, "what": e.what} for e in self.human.log if e.kind in ("start", "success", "failure")],
+            human_events=[{"t": round(e.t, 3), "kind": e.kind, "what": e.what} for e in self.human.log
+                          if e.kind in ("start", "success", "failure")],
             world_events=self.world_events,
             actions=[{"action": r.action, "start": round(r.start, 3), "end": None if r.end is None else round(r.end, 3),
                       "status": r.status, "reason": r.reason} for r in self.robot.records],

@@ -50,7 +50,8 @@ class Field2D:
 
     def check_dt(self, dt: float) -> None:
         if dt <= 0 or dt > self.tau / 2:
-            raise FieldError(f"field '{self.name}'", "tau", f"dt={dt} s is not a stable Euler step with tau={self.tau} s; need 0 < dt <= tau/2")
+            raise FieldError(f"field '{self.name}'", "tau",
+                             f"dt={dt} s is not a stable Euler step with tau={self.tau} s; need 0 < dt <= tau/2")
 
     def clear_input(self) -> None:
         self.S[:] = 0.0

@@ -25,6 +25,10 @@ class Network:
     advances in steps of ``spec.dt`` seconds.
     """
 
+    t: float              # s since the start (or the last reset)
+    steps: int            # Euler steps since then
+    state_u: np.ndarray   # every field's activation, concatenated
+
     def __init__(self, spec: NetworkSpec, backend: str = "auto", seed: int | None = 0) -> None:
         if backend not in BACKENDS:
             raise FieldError("network", "backend", f"unknown backend {backend!r}; allowed: {', '.join(BACKENDS)}")
@@ -73,6 +77,7 @@ class Network:
             self.t = 0.0
             self.steps = 0
         else:
+            assert old is not None
             old_c, old_u = old
             for name in c.names:
                 if name in old_c.names:
@@ -308,7 +313,8 @@ class Network:
     def describe_table(self, coupling: str) -> str:
         """The connection table a_mj of a coupling as readable text."""
         c = self.spec.coupling(coupling)
-        return format_table(c.matrix(self.spec.fields), self.spec.fields[c.target].items, self.spec.fields[c.source].items, f"{c.name} (k={c.k:g})")
+        return format_table(c.matrix(self.spec.fields), self.spec.fields[c.target].items, self.spec.fields[c.source].items,
+                            f"{c.name} (k={c.k:g})")
 
     def __repr__(self) -> str:
         sizes = ", ".join(f"{n}[{self.spec.fields[n].size}]" for n in self._c.names)

@@ -95,7 +95,8 @@ class FieldSpec:
         if self.items:
             expected = len(self.items) * int(self.spacing)
             if self.size not in (0, expected):
-                raise FieldError(w, "size", f"{self.size} does not match {len(self.items)} items x spacing {self.spacing} = {expected}; give one or the other")
+                raise FieldError(w, "size", f"{self.size} does not match {len(self.items)} items x spacing {self.spacing} = {expected}; "
+                                             "give one or the other")
             self.size = expected
         if isinstance(self.size, bool) or not isinstance(self.size, (int, np.integer)) or self.size < 1:
             raise FieldError(w, "size", f"must be a whole number >= 1 (or give items), got {self.size!r}")
@@ -180,7 +181,8 @@ class CouplingSpec:
         if isinstance(self.table, (list, tuple, np.ndarray)):
             arr = np.asarray(self.table, dtype=float)
             if arr.shape != (len(tgt.items), len(src.items)):
-                raise FieldError(w, "table", f"matrix shape {arr.shape} does not match (target items, source items) = ({len(tgt.items)}, {len(src.items)})")
+                raise FieldError(w, "table", f"matrix shape {arr.shape} does not match (target items, source items) = "
+                                              f"({len(tgt.items)}, {len(src.items)})")
             self.table = {t: {s: float(arr[i, j]) for j, s in enumerate(src.items) if arr[i, j] != 0.0} for i, t in enumerate(tgt.items)}
         if not isinstance(self.table, Mapping):
             raise FieldError(w, "table", "must map target item -> {source item: weight}")
@@ -233,7 +235,8 @@ class NetworkSpec:
             # Explicit Euler on tau du/dt = -u + ...: dt >= 2 tau diverges and
             # dt >= tau overshoots; half of tau is the coarsest step we accept.
             if self.dt > f.tau / 2:
-                raise FieldError(f.where, "tau", f"dt={self.dt} s is too large for a stable Euler step with tau={f.tau} s; need dt <= tau/2")
+                raise FieldError(f.where, "tau",
+                                 f"dt={self.dt} s is too large for a stable Euler step with tau={f.tau} s; need dt <= tau/2")
         names = set()
         for c in self.couplings:
             c.validate(self.fields)

@@ -18,9 +18,8 @@ zone).
 
 from __future__ import annotations
 
-from dataclasses import dataclass
-
 import math
+from dataclasses import dataclass
 
 import mujoco
 import numpy as np

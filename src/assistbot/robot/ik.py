@@ -27,8 +27,18 @@ import mink
 import mujoco
 import numpy as np
 
-from assistbot.robot.ik_model import (ARM_GEOMS, ARM_JOINTS, BODY_GEOMS, HAND_GEOMS, HUMAN_BODY_GEOMS, OBSTACLE_AWAY_Z,
-                                      OBSTACLES, TABLE_GEOMS, build_ik_model, obstacle_geom)
+from assistbot.robot.ik_model import (
+    ARM_GEOMS,
+    ARM_JOINTS,
+    BODY_GEOMS,
+    HAND_GEOMS,
+    HUMAN_BODY_GEOMS,
+    OBSTACLE_AWAY_Z,
+    OBSTACLES,
+    TABLE_GEOMS,
+    build_ik_model,
+    obstacle_geom,
+)
 from assistbot.world.layout import TABLE_Z
 
 #: a relaxed posture: elbow bent, forearm forward, hand above the table in front of the robot

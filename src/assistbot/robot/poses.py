@@ -13,7 +13,6 @@ import mink
 import numpy as np
 
 
-
 def min_jerk(s: float) -> float:
     """Minimum-jerk position profile on [0, 1] (zero velocity and acceleration at both ends)."""
     s = min(max(s, 0.0), 1.0)

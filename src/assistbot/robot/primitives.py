@@ -121,7 +121,8 @@ class Move(Phase):
     def _unreachable(self, prim, goal: mink.SE3) -> str:
         dist = prim.robot.reach_distance(goal.translation())
         if dist > REACH:
-            return f"{self.name}: target {np.round(goal.translation(), 2).tolist()} out of reach ({dist:.2f} m from the shoulder > {REACH:.2f} m)"
+            return (f"{self.name}: target {np.round(goal.translation(), 2).tolist()} out of reach "
+                    f"({dist:.2f} m from the shoulder > {REACH:.2f} m)")
         if goal.translation()[0] < TCP_MIN_X - 0.01:
             return (f"{self.name}: target x {goal.translation()[0]:.2f} m is beyond the hand-over zone "
                     f"(the hand may reach x >= {TCP_MIN_X:.2f} m)")
@@ -197,7 +198,8 @@ class Grip(Phase):
                 return Status.FAILED, f"{self.name}: the hand closed on nothing"
             if t >= self.timeout:
                 pressing = [part for part, f in g.pressure().items() if f > PRESS_N]
-                return Status.FAILED, f"{self.name}: no grasp of {prim.object} after {self.timeout:.1f} s (pressing: {pressing or 'nothing'})"
+                return (Status.FAILED,
+                        f"{self.name}: no grasp of {prim.object} after {self.timeout:.1f} s (pressing: {pressing or 'nothing'})")
             return Status.RUNNING, ""
         # let go: wait until the fingers are open (the hand then backs off without dragging the object)
         if t >= self.settle and (float(g.finger_angles().max()) < OPENED or t >= self.timeout):

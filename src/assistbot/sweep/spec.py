@@ -403,7 +403,8 @@ def sweep_from_mapping(data: Any, where: str, base: Path | None = None) -> Sweep
     for key in data:
         if key not in FILE_KEYS:
             close = difflib.get_close_matches(str(key), FILE_KEYS, n=1)
-            raise UserError(where, str(key), "unknown key" + (f"; did you mean {close[0]}?" if close else f"; allowed: {', '.join(FILE_KEYS)}"))
+            hint = f"; did you mean {close[0]}?" if close else f"; allowed: {', '.join(FILE_KEYS)}"
+            raise UserError(where, str(key), "unknown key" + hint)
     scen = data.get("scenarios", data.get("scenario"))
     if isinstance(scen, str):
         scen = [scen]

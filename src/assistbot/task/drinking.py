@@ -403,10 +403,13 @@ class Utterance:
 
 UTTERANCES: dict[str, dict[str, Utterance]] = {
     "ASL": {u.item: u for u in (
-        Utterance("ASL", "Reach-grasp-SG-closed-bottle", "You are holding the closed bottle out to me.", "understood:hold_out_closed_bottle"),
-        Utterance("ASL", "Reach-grasp-AG-closed-bottle-to-hand-over", "You are handing me the closed bottle.", "understood:hand_over_closed_bottle"),
+        Utterance("ASL", "Reach-grasp-SG-closed-bottle", "You are holding the closed bottle out to me.",
+                  "understood:hold_out_closed_bottle"),
+        Utterance("ASL", "Reach-grasp-AG-closed-bottle-to-hand-over", "You are handing me the closed bottle.",
+                  "understood:hand_over_closed_bottle"),
         Utterance("ASL", "Reach-grasp-SG-open-bottle-to-pour", "You are going to pour.", "understood:pour"),
-        Utterance("ASL", "Reach-grasp-AG-open-bottle-to-hand-over", "You are handing me the open bottle.", "understood:hand_over_open_bottle"),
+        Utterance("ASL", "Reach-grasp-AG-open-bottle-to-hand-over", "You are handing me the open bottle.",
+                  "understood:hand_over_open_bottle"),
         Utterance("ASL", "Reach-grasp-AG-glass-to-hand-over", "You are handing me the glass.", "understood:hand_over_glass"),
         Utterance("ASL", "Reach-grasp-SG-glass-to-turn", "You are turning the glass.", "understood:turn_glass"),
         Utterance("ASL", "Reach-grasp-SG-full-glass-to-drink", "You are going to drink.", "understood:drink"),

@@ -114,15 +114,15 @@ def silhouette(mask):
                 break
         if f < 0:
             continue
-        l = f
+        lx = f
         for x in range(W - 1, f, -1):
             if mask[y, x]:
-                l = x
+                lx = x
                 break
-        rows[n], first[n], last[n] = y, f, l
+        rows[n], first[n], last[n] = y, f, lx
         n += 1
         c, sx, sxx = 0, 0, 0
-        for x in range(f, l + 1):
+        for x in range(f, lx + 1):
             if mask[y, x]:
                 c += 1
                 sx += x
@@ -197,8 +197,8 @@ def _at(comp, ox, oy, x, y):
 def blob_pixels(comp, ox, oy, label, lab, near_label, x0, y0, x1, y1):
     """In the window [y0, y1) x [x0, x1) of a half-resolution image: the centres (x, y), at full
     resolution, of the pixels of component ``label`` (of the components' label image ``comp``, placed
-    at column ox, row oy of the image; 0 outside it) in row-major order, and of those next to (3x3, within the window) a pixel labelled ``near_label``
-    in ``lab``: their count and the sums of their window columns and rows."""
+    at column ox, row oy of the image; 0 outside it) in row-major order, and of those next to (3x3, within the window) a
+    pixel labelled ``near_label`` in ``lab``: their count and the sums of their window columns and rows."""
     n = 0
     for y in range(y0, y1):
         for x in range(x0, x1):

@@ -40,14 +40,13 @@ from dataclasses import dataclass, field
 import cv2
 import numpy as np
 
-cv2.setNumThreads(1)   # per-frame work on small images: OpenCV's thread pool costs more than it saves
-
 from assistbot.vision import segment
 from assistbot.vision.body import RobotBody
 from assistbot.vision.camera import CameraModel, expected_boxes, on_plane, triangulate
-from assistbot.vision.segment import (LABEL, Blob, ColourTable, blob_pixels, components_each, count_near, first_row_over,
-                                      masked_saturation)
+from assistbot.vision.segment import LABEL, Blob, ColourTable, blob_pixels, components_each, count_near, first_row_over, masked_saturation
 from assistbot.world import layout
+
+cv2.setNumThreads(1)   # per-frame work on small images: OpenCV's thread pool costs more than it saves
 
 MIN_EXTENT = 0.82
 MIN_EXTENT_HELD = 0.55
@@ -382,7 +381,8 @@ class Detector:
         self.static_cells = np.ascontiguousarray(np.array(calibration.get("static_skin_cells", []), float).reshape(-1, 3))
         self.arm_root = np.array(calibration["arm_root"], float) if "arm_root" in calibration else None
         self._margin = cv2.getStructuringElement(cv2.MORPH_ELLIPSE, (2 * STATIC_MARGIN + 1,) * 2)
-        if segment._kernels is not None:   # compile (or load from numba's cache) the hand's and the arm's kernels now, not in the first frame
+        # compile (or load from numba's cache) the hand's and the arm's kernels now, not in the first frame
+        if segment._kernels is not None:
             outline_hog(np.zeros(CROP["hand"][::-1], np.float32))
             finger_parts(np.ones((3, 3), bool), 1.0)
             z = np.zeros((1, 3))

@@ -109,23 +109,27 @@ class Score:
             for i, c in enumerate(cl):
                 lines.append(f"  {c:<{w}} " + " ".join(f"{v:>8}" for v in M[i]))
             lines.append("  accuracy by the report's confidence: " + "; ".join(
-                f"{lo:.1f}-{hi:.1f}: {acc * 100:.1f}% of {k}" if k else f"{lo:.1f}-{hi:.1f}: none" for lo, hi, k, acc in self.by_confidence(kind)))
+                f"{lo:.1f}-{hi:.1f}: {acc * 100:.1f}% of {k}" if k else f"{lo:.1f}-{hi:.1f}: none"
+                for lo, hi, k, acc in self.by_confidence(kind)))
         for o, v in self.low_conf.items():
             if v:
                 lines.append(f"{o}: {len(v)} seen with a low-confidence state (<= {LOW_CONFIDENCE}: stopper hidden), "
                              f"not scored above; {sum(v)} of them right")
         e = np.array(self.pos_err) * 100
         if e.size:
-            lines.append(f"\nobject position error: median {np.median(e):.2f} cm, 95th percentile {np.percentile(e, 95):.2f} cm, max {e.max():.1f} cm (n={e.size})")
+            lines.append(f"\nobject position error: median {np.median(e):.2f} cm, 95th percentile {np.percentile(e, 95):.2f} cm, "
+                         f"max {e.max():.1f} cm (n={e.size})")
         e = np.array(self.pos_err_lifted) * 100
         if e.size:
-            lines.append(f"  of which lifted in a hand: median {np.median(e):.2f} cm, 95th percentile {np.percentile(e, 95):.2f} cm (n={e.size})")
+            lines.append(f"  of which lifted in a hand: median {np.median(e):.2f} cm, "
+                         f"95th percentile {np.percentile(e, 95):.2f} cm (n={e.size})")
         e = np.array(self.hand_err) * 100
         if e.size:
-            lines.append(f"hand position error (grasp site): median {np.median(e):.2f} cm, 95th percentile {np.percentile(e, 95):.2f} cm (n={e.size})")
+            lines.append(f"hand position error (grasp site): median {np.median(e):.2f} cm, "
+                         f"95th percentile {np.percentile(e, 95):.2f} cm (n={e.size})")
         if self.render_ms:
-            lines.append(f"ms per stereo pair: rendering {np.median(self.render_ms):.2f} (median), processing {np.median(self.process_ms):.2f} (median), "
-                         f"{np.percentile(self.process_ms, 95):.2f} (95th)")
+            lines.append(f"ms per stereo pair: rendering {np.median(self.render_ms):.2f} (median), "
+                         f"processing {np.median(self.process_ms):.2f} (median), {np.percentile(self.process_ms, 95):.2f} (95th)")
         if self.process_cpu_ms:
             lines.append(f"processing CPU time per stereo pair: {np.median(self.process_cpu_ms):.2f} ms (median), "
                          f"{np.percentile(self.process_cpu_ms, 95):.2f} (95th) -- wall times above include waiting for a shared CPU")

@@ -233,7 +233,8 @@ def _r(a) -> list[float]:
 def load_calibration(root: Path | None = None) -> dict:
     path = (root or TEMPLATES) / "calibration.json"
     if not path.exists():
-        raise UserError(str(path), "calibration", "missing colour calibration; run `assistbot calibrate` (or `assistbot templates`, which also calibrates)")
+        raise UserError(str(path), "calibration",
+                        "missing colour calibration; run `assistbot calibrate` (or `assistbot templates`, which also calibrates)")
     return json.loads(path.read_text())
 
 

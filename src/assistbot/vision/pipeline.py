@@ -274,7 +274,8 @@ class Vision:
                 u, v = int(uv[0] * scale), int(uv[1] * scale)
                 cv2.drawMarker(img, (u, v), (255, 0, 255), cv2.MARKER_CROSS, 10, 2)
                 rel = " ".join(f"{k}={getattr(hnd, k)}" for k in ("object_in_hand", "pointed_at") if getattr(hnd, k))
-                cv2.putText(img, f"hand {hnd.posture} {hnd.confidence:.2f}{' held out' if hnd.held_out else ''} {rel}", (u - 60, max(12, v - 8)), font, 0.4, (0, 0, 0), 1)
+                text = f"hand {hnd.posture} {hnd.confidence:.2f}{' held out' if hnd.held_out else ''} {rel}"
+                cv2.putText(img, text, (u - 60, max(12, v - 8)), font, 0.4, (0, 0, 0), 1)
         cv2.putText(img, f"t={frame.t:.1f}s vision {self.timing.process_ms:.1f} ms", (6, img.shape[0] - 8), font, 0.45, (255, 255, 255), 1)
         return img
 

@@ -37,9 +37,20 @@ from assistbot.world.arrangement import PAPER_ARRANGEMENTS, Arrangement, Placeme
 from assistbot.world.layout import TABLE_Z, zone_of
 from assistbot.world.state import LiquidState, ObjectState, WorldState
 from assistbot.world.world import (
-    CAMERAS, GRIPPER_CLOSED, GRIPPER_OPEN, HAND_POSTURES, HOME, HUMAN_ARM_JOINTS, HUMAN_HAND_JOINTS,
-    ROBOT_ARM_ACTUATORS, ROBOT_ARM_JOINTS, ROBOT_FINGER_ACTUATORS, ROBOT_HEAD_JOINTS,
-    STOPPER_RELEASE_FORCE, World, build_world,
+    CAMERAS,
+    GRIPPER_CLOSED,
+    GRIPPER_OPEN,
+    HAND_POSTURES,
+    HOME,
+    HUMAN_ARM_JOINTS,
+    HUMAN_HAND_JOINTS,
+    ROBOT_ARM_ACTUATORS,
+    ROBOT_ARM_JOINTS,
+    ROBOT_FINGER_ACTUATORS,
+    ROBOT_HEAD_JOINTS,
+    STOPPER_RELEASE_FORCE,
+    World,
+    build_world,
 )
 
 __all__ = [

@@ -52,7 +52,8 @@ class WorldState:
     def summary(self) -> str:
         o = self.objects
         return (f"t={self.time:.2f}s bottle {o['bottle'].zone} {self.bottle_state}, glass {o['glass'].zone} {self.glass_state}, "
-                f"liquid bottle/glass/spilled/drunk {self.liquid.in_bottle}/{self.liquid.in_glass}/{self.liquid.spilled}/{self.liquid.drunk}, "
+                f"liquid bottle/glass/spilled/drunk "
+                f"{self.liquid.in_bottle}/{self.liquid.in_glass}/{self.liquid.spilled}/{self.liquid.drunk}, "
                 f"robot holds {self.robot_holds}, human holds {self.human_holds}")
 
 
@@ -89,7 +90,8 @@ def world_state(world) -> WorldState:
     pts = d.xpos[world.particle_bodies]
     alive = ~world.drunk
     bb = world.body_id["bottle"]
-    in_bottle = in_cylinder(pts, d.xpos[bb], d.xmat[bb].reshape(3, 3), layout.BOTTLE_INNER_RADIUS + 0.002, 0.0, layout.BOTTLE_MOUTH_Z + 0.005) & alive
+    in_bottle = in_cylinder(pts, d.xpos[bb], d.xmat[bb].reshape(3, 3), layout.BOTTLE_INNER_RADIUS + 0.002, 0.0,
+                            layout.BOTTLE_MOUTH_Z + 0.005) & alive
     in_glass = in_glass_region(world, pts) & alive & ~in_bottle
     mouth = d.site_xpos[world.site_id["human_mouth"]]
     near_mouth = int(np.sum((np.linalg.norm(pts - mouth, axis=1) < 0.08) & alive))

@@ -19,7 +19,6 @@ measured quantities, never by who is doing what:
 
 from __future__ import annotations
 
-
 import mujoco
 import numpy as np
 
@@ -252,7 +251,8 @@ class World:
         m.geom_rgba[g, 3] = 1.0 if shown else 0.0
         r = layout.PARTICLE_RADIUS
         bb, gb = self.body_id["bottle"], self.body_id["glass"]
-        hidden = self.drunk | in_cylinder(pts, d.xpos[bb], d.xmat[bb].reshape(3, 3), layout.BOTTLE_RADIUS - r, r, layout.BOTTLE_BODY_TOP - r)
+        hidden = self.drunk | in_cylinder(pts, d.xpos[bb], d.xmat[bb].reshape(3, 3), layout.BOTTLE_RADIUS - r, r,
+                                          layout.BOTTLE_BODY_TOP - r)
         if shown:
             # resting particles sink a fraction of a millimetre into the glass's base
             hidden |= in_cylinder(pts, d.xpos[gb], d.xmat[gb].reshape(3, 3), m.geom_size[g, 0] - r,
