@@ -56,3 +56,12 @@ def test_field_error_from_a_command_becomes_one_line(monkeypatch, capsys):
     monkeypatch.setattr(demo, "run_demo", broken)
     assert main(["fields-demo"]) == 2
     assert capsys.readouterr().err == "error: field 'X': tau: must be > 0, got -1\n"
+
+
+def test_a_reader_that_stops_reading_gets_no_traceback():
+    """`assistbot list | head -1`: the pipe closes before the listing is written; the command ends quietly."""
+    p = subprocess.Popen([sys.executable, "-m", "assistbot.cli", "list"], stdout=subprocess.PIPE, stderr=subprocess.PIPE)
+    p.stdout.close()                    # before the command has imported, let alone written anything
+    err = p.stderr.read().decode()
+    assert p.wait(timeout=60) == 1
+    assert "Traceback" not in err and "BrokenPipeError" not in err, err
