@@ -42,7 +42,7 @@ def main() -> None:
 
     from assistbot.commands.run import parse_sets
     from assistbot.episode import run_scenario
-    from assistbot.episode.runner import Episode
+    from assistbot.episode.builder import build_episode
     from assistbot.scenario import load_scenario
     from assistbot.world import build_world
 
@@ -51,7 +51,7 @@ def main() -> None:
         sc.time_limit = args.seconds
     t0 = time.perf_counter()
     overrides = parse_sets(args.set)
-    ep = Episode(sc, perception=args.perception, overrides=overrides)
+    ep = build_episode(sc, perception=args.perception, overrides=overrides)
     setup = time.perf_counter() - t0
     t0 = time.perf_counter()
     result = ep.run()
@@ -75,8 +75,10 @@ def main() -> None:
     other = total - sum(v for k, v in result.wall.items() if k != "video")
     print(f"{'loop/other':<14}{other:>9.2f}{other / total:>8.0%}{1000 * other / sim:>15.1f}")
     print(f"{'whole episode':<14}{total:>9.2f}")
-    drawn = getattr(ep.perception, "drawn_seconds", 0.0)
-    if getattr(ep.perception, "pipelined", False):
+    from assistbot.episode.vision_perception import VisionPerception
+
+    if isinstance(ep.perception, VisionPerception) and ep.perception.pipelined:
+        drawn = ep.perception.drawn_seconds
         print(f"(the head cameras' pictures took {drawn:.2f} s on the render thread, {1000 * drawn / sim:.1f} ms per sim s; "
               f"'rendering' above is what the loop waited for them)")
     print(f"physics alone: {physics_alone:.2f} s for the same {sim:.1f} simulated s ({sim / physics_alone:.1f}x real time)")

@@ -390,7 +390,7 @@ def _run_with_failures(cog, truth, fail_action, failures, seconds, fail_after=2.
         if running is not None and t - running[1] >= fail_after:
             ok = not (running[0] == fail_action and failed < failures)
             failed += 0 if ok else 1
-            robot = {"action": running[0], "status": "finished" if ok else "failed"}
+            robot = {"action": running[0], "status": "succeeded" if ok else "failed"}
             running = None
         elif running is not None:
             robot = {"action": running[0], "status": "running"}

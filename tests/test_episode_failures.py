@@ -9,8 +9,9 @@ import dataclasses
 
 import pytest
 
+from assistbot.episode.builder import build_episode
 from assistbot.episode.executor import RobotExecutor
-from assistbot.episode.runner import Episode
+from assistbot.interfaces import Status
 from assistbot.scenario import parse_scenario
 
 SCENARIO = {"name": "receive-fails", "seed": 0, "time_limit": 150,
@@ -38,9 +39,9 @@ class FailingExecutor(RobotExecutor):
         super().begin(action, t, utterance)
 
     def tick(self, t, dt):
-        if self._fail_at is not None and self.status == "running":
+        if self._fail_at is not None and self.status is Status.RUNNING:
             if t >= self._fail_at:
-                self._end(t, "failed", f"{self.fail_action}: injected failure")
+                self._end(t, Status.FAILED, f"{self.fail_action}: injected failure")
                 self._fail_at = None
             return
         super().tick(t, dt)
@@ -48,8 +49,8 @@ class FailingExecutor(RobotExecutor):
 
 def episode(times: int, limit: float = 150.0):
     sc = dataclasses.replace(parse_scenario(SCENARIO), time_limit=limit)
-    ep = Episode(sc, perception="oracle")
-    ep.robot = FailingExecutor(ep.world, "Receive-object", times)
+    ep = build_episode(sc, perception="oracle")
+    ep.actor = FailingExecutor(ep.world, "Receive-object", times)
     return ep, ep.run()
 
 
@@ -66,8 +67,8 @@ def test_two_failures_to_take_from_the_hand_are_said_and_bring_the_table_hand_ov
     assert r.decisions[alt][0] > said[0]["t"] - 0.5
     # the person set it down under the robot's hand and the robot took it from the table
     took = [a for a in r.actions if a["action"] == "Take-from-table"]
-    assert took and took[0]["status"] == "finished", r.actions
-    assert any(e["what"] == "put_down_for_robot" and e["kind"] == "success" for e in r.human_events)
+    assert took and took[0]["status"] == "succeeded", r.actions
+    assert any(e["what"] == "put_down_for_robot" and e["kind"] == "succeeded" for e in r.human_events)
     assert r.success, (r.end_reason, decisions)
 
 
@@ -81,7 +82,7 @@ def test_one_failure_is_tried_again_and_nothing_is_said():
 @pytest.mark.parametrize("mechanism", ["couplings.AFL->AML.k", "stimulus.failure_pulse"])
 def test_without_the_mismatch_there_is_no_alternative(mechanism):
     sc = dataclasses.replace(parse_scenario(SCENARIO), time_limit=90.0)
-    ep = Episode(sc, perception="oracle", overrides={f"cognition.{mechanism}": 0.0})
-    ep.robot = FailingExecutor(ep.world, "Receive-object", 2)
+    ep = build_episode(sc, perception="oracle", overrides={f"cognition.{mechanism}": 0.0})
+    ep.actor = FailingExecutor(ep.world, "Receive-object", 2)
     r = ep.run()
     assert "Take-from-table" not in [a for _, a in r.decisions]

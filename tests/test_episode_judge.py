@@ -52,7 +52,7 @@ def test_the_same_action_failing_three_times_or_decided_five_times_in_a_row_is_r
     j = Judge(w, time_limit=100.0)
     for k in range(REPEAT_FAILURES - 1):
         j.action_ended(float(k), "Receive-object", "failed", "grasp: the hand closed on nothing")
-        j.action_ended(float(k), "Request-glass", "finished")
+        j.action_ended(float(k), "Request-glass", "succeeded")
     assert j.verdict(5.0) is None
     j.action_ended(6.0, "Receive-object", "failed", "grasp: the hand closed on nothing")
     assert j.verdict(6.0) == "repeating" and j.detail["action"] == "Receive-object"

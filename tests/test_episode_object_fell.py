@@ -5,7 +5,7 @@ from __future__ import annotations
 
 import pytest
 
-from assistbot.episode.runner import Episode
+from assistbot.episode.builder import build_episode
 from assistbot.scenario import parse_scenario
 from assistbot.vision import detect
 
@@ -19,7 +19,7 @@ TIP_UNTIL = 1.25   # s: a twist about the table's x axis from 1 s to this: the b
 
 
 def run(torque: float):
-    ep = Episode(parse_scenario(SCENARIO), perception="vision")
+    ep = build_episode(parse_scenario(SCENARIO), perception="vision")
     b = ep.world.body_id["bottle"]
 
     def push(t: float) -> None:

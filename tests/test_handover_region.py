@@ -71,7 +71,7 @@ def person_to_robot(obj, offset):
     st = w.state()
     assert st.human_holds is None and st.robot_holds is None, st.summary()
     assert st.objects[obj].zone == "RWS" and st.objects[obj].upright, st.summary()
-    assert human.done[-1].name == "hand_to_robot" and human.done[-1].status == "success", human.done[-1].reason
+    assert human.done[-1].name == "hand_to_robot" and human.done[-1].status == "succeeded", human.done[-1].reason
     assert s.human >= 0.05
     _nothing_else_moved(w, obj, other0)
 
@@ -101,7 +101,7 @@ def robot_to_person(obj, offset):
     st = w.state()
     # the taker holds it; an empty glass, which she cannot drink from, she then sets down on her side
     taken = [b for b in human.done if b.name == "take_from_robot"]
-    assert taken and taken[-1].status == "success", taken[-1].reason if taken else human.done
+    assert taken and taken[-1].status == "succeeded", taken[-1].reason if taken else human.done
     assert st.robot_holds is None, st.summary()
     assert st.human_holds == obj or (obj == "glass" and st.human_holds is None and st.objects[obj].zone == "HWS"), st.summary()
     assert st.objects[obj].upright

@@ -22,7 +22,7 @@ def test_bad_arguments_are_one_line_and_exit_two(argv, key, capsys):
 def test_writes_a_video_of_the_behaviour(tmp_path, capsys):
     assert main(["human-act", "point", "--out", str(tmp_path), "--size", "160x120", "--fps", "10"]) == 0
     out = capsys.readouterr().out
-    assert "point: success" in out
+    assert "point: succeeded" in out
     frames = [f for f in iio.get_reader(str(tmp_path / "point.mp4"))]
     assert len(frames) >= 30 and frames[0].shape == (120, 160, 3)
     assert max(float(f.std()) for f in frames) > 10          # a picture, not a blank

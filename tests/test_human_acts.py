@@ -31,10 +31,10 @@ def _run_until_done(hc, s, limit: float, name: str | None = None):
     t_end = hc.world.time + limit
     while hc.world.time < t_end:
         hc.run(0.5, robot=s.tick)
-        ends = [e for e in hc.events() if e.kind in ("success", "failure") and (name is None or e.what == name)]
+        ends = [e for e in hc.events() if e.kind in ("succeeded", "failed") and (name is None or e.what == name)]
         if ends and hc.current is None:
             return ends
-    return [e for e in hc.events() if e.kind in ("success", "failure")]
+    return [e for e in hc.events() if e.kind in ("succeeded", "failed")]
 
 
 class _HandWatch:
@@ -54,7 +54,7 @@ class _HandWatch:
 
 def _ok(ends, name):
     mine = [e for e in ends if e.what == name]
-    assert mine and mine[-1].kind == "success", ends
+    assert mine and mine[-1].kind == "succeeded", ends
     return mine[-1]
 
 
@@ -80,8 +80,8 @@ def test_drink_does_not_count_with_an_empty_glass():
     while w.time < 25.0 and (hc.current is not None or not hc.done):
         hc.run(0.2, robot=s.tick)
         top = max(top, float(w.data.xpos[w.body_id["glass"]][2]))
-    ends = [e for e in hc.events() if e.kind in ("success", "failure")]
-    assert ends[-1].what == "drink" and ends[-1].kind == "failure" and "empty" in ends[-1].detail["reason"]
+    ends = [e for e in hc.events() if e.kind in ("succeeded", "failed")]
+    assert ends[-1].what == "drink" and ends[-1].kind == "failed" and "empty" in ends[-1].detail["reason"]
     assert w.state().liquid.drunk == 0
     assert top > 1.05                                       # the glass really was brought up to the mouth
 
@@ -198,8 +198,8 @@ def test_handed_the_bottle_with_the_glass_out_of_reach_puts_it_down_on_his_side(
     s.carry_to((-0.02, 0.05, 0.80))
     hc.start("take_from_robot", object="bottle")
     hc.run(20.0, robot=s.tick)
-    done = [(e.what, e.kind) for e in hc.events() if e.kind in ("success", "failure")]
-    assert done[:2] == [("take_from_robot", "success"), ("put_down", "success")], done
+    done = [(e.what, e.kind) for e in hc.events() if e.kind in ("succeeded", "failed")]
+    assert done[:2] == [("take_from_robot", "succeeded"), ("put_down", "succeeded")], done
     st = w.state()
     assert st.human_holds is None and st.objects["bottle"].upright and st.objects["bottle"].pos[0] < 0
 
@@ -258,7 +258,7 @@ def test_passive_takes_the_object_offered():
     hc.hear("offer:glass", w.time)
     _ok(_run_until_done(hc, s, 40.0, "put_down"), "put_down")
     # an empty glass is not held for ever: taken, then set down on her side, to pour into or to be filled
-    assert [e.what for e in hc.events("success")] == ["take_from_robot", "put_down"]
+    assert [e.what for e in hc.events("succeeded")] == ["take_from_robot", "put_down"]
     st = w.state()
     assert st.human_holds is None and s.holds() is None
     assert st.objects["glass"].zone == "HWS" and st.objects["glass"].upright
@@ -318,7 +318,7 @@ def test_invited_to_pull_the_stopper_while_handing_the_glass_over_she_sets_the_g
     hc.hear("invite:remove_stopper", w.time)
     _run_until_done(hc, s, 60.0, "pull_stopper")
     assert [e.what for e in hc.events("start")] == ["hand_to_robot", "put_down", "pull_stopper"]
-    assert [e.what for e in hc.events("success")][:1] == ["put_down"]
+    assert [e.what for e in hc.events("succeeded")][:1] == ["put_down"]
     st = w.state()
     assert st.objects["glass"].upright and st.objects["glass"].zone == "HWS" and st.objects["glass"].held_by is None
 
@@ -367,8 +367,8 @@ def test_slow_profile_is_two_to_three_times_slower():
         w = build_world(Arrangement.from_options("HWS:closed", "RWS:inverted"), seed=0)
         hc = HumanController(w, profile=profile, seed=2)
         hc.run(25.0)
-        ends = [e for e in hc.events() if e.kind in ("success", "failure") and e.what == "grasp"]
-        assert ends and ends[0].kind == "success"
+        ends = [e for e in hc.events() if e.kind in ("succeeded", "failed") and e.what == "grasp"]
+        assert ends and ends[0].kind == "succeeded"
         times[profile] = ends[0].t - hc.events("start")[0].t
     assert 2.0 <= times["slow"] / times["active"] <= 3.5, times
 
@@ -402,7 +402,7 @@ def test_drink_does_not_count_with_a_glass_that_is_not_full():
     assert st.glass_state == "empty" and 0 < st.liquid.in_glass < 0.6 * layout.N_PARTICLES
     hc.start("drink")
     ends = _run_until_done(hc, s, 25.0)
-    assert ends[-1].what == "drink" and ends[-1].kind == "failure" and "not full" in ends[-1].detail["reason"]
+    assert ends[-1].what == "drink" and ends[-1].kind == "failed" and "not full" in ends[-1].detail["reason"]
     assert w.state().liquid.drunk > 0                         # the particles did reach the mouth: not counted as a drink
 
 
@@ -445,7 +445,7 @@ def test_an_active_person_pours_when_both_are_on_their_side_and_a_closed_bottle_
     assert hc.events("start")[0].what == "pour"
     w2, s2, hc2 = _setup(_arr({"zone": "HWS", "state": "closed"}, {"zone": "HWS", "state": "empty"}))
     hc2.start("pour")
-    assert _run_until_done(hc2, s2, 2.0, "pour")[-1].kind == "failure"
+    assert _run_until_done(hc2, s2, 2.0, "pour")[-1].kind == "failed"
 
 
 def test_the_hold_out_habit_is_checked_against_the_region():

@@ -17,7 +17,7 @@ def test_grasp_and_hold_out_bottle(where, grip):
     hc = HumanController(w, profile="passive")
     hc.start("grasp", object="bottle", grip=grip, hold_out=True)
     hc.run(9.0)
-    assert [e.kind for e in hc.events() if e.kind in ("start", "success", "failure")] == ["start", "success"]
+    assert [e.kind for e in hc.events() if e.kind in ("start", "succeeded", "failed")] == ["start", "succeeded"]
     st = w.state()
     assert st.human_holds == "bottle"
     assert st.objects["bottle"].pos[2] > layout.TABLE_Z + 0.05          # lifted off the table
@@ -29,8 +29,8 @@ def test_stopper_pull_fails_with_a_free_bottle():
     hc = HumanController(w, profile="passive")
     hc.start("pull_stopper")
     hc.run(10.0)
-    ends = [e for e in hc.events() if e.kind in ("success", "failure")]
-    assert ends and ends[0].kind == "failure" and "lifts" in ends[0].detail["reason"]
+    ends = [e for e in hc.events() if e.kind in ("succeeded", "failed")]
+    assert ends and ends[0].kind == "failed" and "lifts" in ends[0].detail["reason"]
     assert w.state().stopper_attached
 
 

@@ -7,7 +7,8 @@ import mujoco
 import numpy as np
 import pytest
 
-from assistbot.episode.runner import split_overrides
+from assistbot.cognition.percept import RobotPercept
+from assistbot.episode.builder import split_overrides
 from assistbot.episode.vision_perception import VisionPerception
 from assistbot.errors import UserError
 from assistbot.vision import CaptureConfig, StereoCapture
@@ -59,7 +60,7 @@ def test_dropped_frames_follow_the_seed_with_or_without_the_thread(world):
 
 
 def test_pipelined_vision_sees_the_world_one_perception_tick_late(world):
-    robot = {"holding": None, "action": None, "status": "idle"}
+    robot = RobotPercept()   # idle, holding nothing
     sync, piped = VisionPerception(world, pipelined=False), VisionPerception(world, pipelined=True)
     try:
         first = piped.perceive(0.0, robot)

@@ -140,7 +140,7 @@ def test_the_scripted_human_pulls_the_stopper_off_the_bottle_the_robot_holds():
 
     pr, s = run(w, prim, body_xy(w, "bottle"), seconds=45.0, each_tick=tick)
     assert pr.status is Status.SUCCEEDED, pr.reason
-    assert human.done and human.done[0].status == "success", human.done and human.done[0].reason
+    assert human.done and human.done[0].status == "succeeded", human.done and human.done[0].reason
     st = w.state()
     assert st.bottle_open and st.objects["bottle"].zone == "RWS" and upright(w, "bottle")
     assert_safe(s)
@@ -221,7 +221,7 @@ def test_turn_and_hand_over_gives_the_human_an_upright_glass(glass):
     prim = P.TurnAndHandOver(robot, "glass", human_holds=lambda: w.human_holding() == "glass")
     pr, s, human = _give(w, robot, prim, body_xy(w, "glass"), "glass")
     assert pr.status is Status.SUCCEEDED, pr.reason
-    assert [(b.name, b.status) for b in human.done][:1] == [("take_from_robot", "success")]
+    assert [(b.name, b.status) for b in human.done][:1] == [("take_from_robot", "succeeded")]
     # taken upright; the person then sets the empty glass down on her side or still holds it
     st = w.state()
     assert w.data.xmat[w.body_id["glass"]][8] > 0.9 and st.robot_holds is None
@@ -318,7 +318,7 @@ def test_receive_takes_the_object_from_the_human_hand_and_puts_it_in_rws(obj, ar
     st = w.state()
     assert st.objects[obj].zone == "RWS" and upright(w, obj), st.summary()
     assert st.human_holds is None and st.robot_holds is None
-    assert human.done[-1].status == "success", human.done[-1].reason
+    assert human.done[-1].status == "succeeded", human.done[-1].reason
     assert_safe(s)
 
 

@@ -87,7 +87,7 @@ class RobotOnlyWorld:
 def _run(arrangement, profile, action, seconds, say: str | None = None, seen=None):
     w = build_world(Arrangement.from_options(*arrangement), seed=0)
     human = HumanController(w, profile=profile, seed=0)
-    perception = OraclePerception(w, human)
+    perception = OraclePerception(w, human.appearance)
     robot = RobotExecutor(RobotOnlyWorld(w))
     n_sub = max(1, int(round(CONTROL_DT / w.model.opt.timestep)))
     began, held = False, set()
@@ -106,7 +106,7 @@ def _run(arrangement, profile, action, seconds, say: str | None = None, seen=Non
         human.tick(t)
         w.step(n_sub)
         held.add(robot.holding())
-        if began and robot.status in ("finished", "failed"):
+        if began and robot.status.ended:
             break
     return w, robot, held - {None}
 
@@ -123,7 +123,7 @@ def test_the_guard_catches_a_look_up():
 
 def test_the_robot_fills_the_glass_on_its_own_senses():
     w, robot, held = _run(("RWS:open@0.20,0.12", "RWS:empty@0.20,-0.12"), "passive", "Reach-grasp-open-bottle-fill-glass", 40.0)
-    assert robot.records[-1].status == "finished", robot.records[-1]
+    assert robot.records[-1].status == "succeeded", robot.records[-1]
     assert w.state().glass_state == "full"
     assert held == {("set out to grasp", "bottle"), "bottle"} and robot.holding() is None
 
@@ -133,7 +133,7 @@ def test_the_robot_takes_what_the_person_holds_out_and_knows_what_it_is_by_sight
     """Receive-object starts before the robot knows which object it will take ("held_out"): the hand
     feels that it holds, the cameras (here the oracle) say what."""
     w, robot, held = _run(("HWS:closed", "RWS:empty"), "active", "Receive-object", 45.0, say="request:bottle")
-    assert robot.records[-1].status == "finished", robot.records[-1]
+    assert robot.records[-1].status == "succeeded", robot.records[-1]
     assert held == {("set out to grasp", "held_out"), "bottle"}
     assert w.state().objects["bottle"].zone == "RWS" and w.state().human_holds is None
 

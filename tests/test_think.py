@@ -28,7 +28,7 @@ BAD = {
     "not_yaml.yaml": "name: [x\n",
     "no_events.yaml": "name: x\nduration: 2\n",
     "bad_time.yaml": "name: x\nduration: 2\nevents:\n  - {t: -1, hand: {posture: none}}\n",
-    "bad_action.yaml": "name: x\nduration: 2\nevents:\n  - {t: 0, robot: {status: finished, action: Dance}}\n",
+    "bad_action.yaml": "name: x\nduration: 2\nevents:\n  - {t: 0, robot: {status: succeeded, action: Dance}}\n",
 }
 
 

@@ -469,10 +469,10 @@ def test_a_hand_turning_the_glass_behind_it_is_not_read_as_pointing_at_the_bottl
     glass. The glass then hides her hand in both cameras and the forearm's end, at the glass's edge,
     looks like a pointing finger (that reading made the robot say "You are pointing at the bottle.
     You want the bottle."). A hand whose end touches the glass is at it, not pointing past it."""
-    from assistbot.episode.runner import Episode
+    from assistbot.episode.builder import build_episode
 
     sc = dataclasses.replace(load_scenario("active-inverted-glass-hws"), time_limit=12.0)
-    ep = Episode(sc, "vision")
+    ep = build_episode(sc, "vision")
     try:
         ep.run()
     finally:

@@ -11,6 +11,7 @@ objects:                   # validated by assistbot.world (zones, states, positi
 human:                     # validated by assistbot.human (profile, parameters, script)
   profile: active
 overrides: {}              # dotted parameter paths -> values
+agent: dnf                 # the robot's mind: dnf (the default), or package.module:factory
 ```
 
 Sections that belong to another package are validated by that package, so
@@ -26,7 +27,7 @@ from typing import Any
 from assistbot.errors import UserError, read_yaml
 from assistbot.resources import SCENARIOS
 
-TOP_KEYS = ("name", "description", "seed", "time_limit", "objects", "human", "overrides")
+TOP_KEYS = ("name", "description", "seed", "time_limit", "objects", "human", "overrides", "agent")
 
 
 @dataclass
@@ -39,6 +40,7 @@ class Scenario:
     objects: Any = None  # assistbot.world.Arrangement
     human: Any = None  # assistbot.human.script.HumanConfig
     overrides: dict[str, Any] = field(default_factory=dict)
+    agent: str = "dnf"   # assistbot.episode.builder.AGENTS, or package.module:factory
     raw: dict[str, Any] = field(default_factory=dict)
 
 
@@ -85,14 +87,20 @@ def parse_scenario(data: Any, path: Path | str | None = None) -> Scenario:
     overrides = data.get("overrides") or {}
     if not isinstance(overrides, dict) or not all(isinstance(k, str) for k in overrides):
         raise UserError(where, "overrides", "must map dotted parameter paths to values, e.g. {cognition.k: 0.8}")
+    agent = data.get("agent", "dnf")
+    if not isinstance(agent, str):
+        raise UserError(where, "agent", f"must be an agent's name or package.module:factory, got {agent!r}")
+    from assistbot.episode.builder import agent_factory
     from assistbot.human.script import parse_human
     from assistbot.world import Arrangement
+
+    agent_factory(agent, where)   # an unknown agent is named now, not when the episode starts
 
     # both name their keys in full ("objects.glass.zone", "human.script[2].do")
     objects = Arrangement.from_mapping(data["objects"], where)
     human = parse_human(data["human"], where)
     return Scenario(name=name, path=Path(path) if path else None, description=desc, seed=seed, time_limit=float(limit),
-                    objects=objects, human=human, overrides=dict(overrides), raw=dict(data))
+                    objects=objects, human=human, overrides=dict(overrides), agent=agent, raw=dict(data))
 
 
 def resolve_path(spec: str | Path) -> Path:

@@ -34,8 +34,11 @@ from assistbot import task
 from assistbot.cognition.config import LAYERS, CognitionConfig
 from assistbot.cognition.percept import Decision, Percept, Said
 from assistbot.fields import Network
+from assistbot.interfaces import Status
 
 SPOKEN_LAYERS = ("ASL", "IL", "AML", "AEL")
+#: the layers whose peaks a log (`trace`) and an episode's video show
+LAYERS_SHOWN = ("ASL", "IL", "AML", "AEL", "CSGL_past", "CSGL_present", "CSGL_future")
 
 
 def ol_items_of(percept: Percept) -> list[str]:
@@ -184,11 +187,11 @@ class Cognition:
         if self._habituation:
             self._apply_release_inputs()
         r = percept.robot
-        if r.status in ("finished", "failed") and self.decision is not None and (r.action is None or r.action == self.decision):
+        if r.status.ended and self.decision is not None and (r.action is None or r.action == self.decision):
             self.release(r.status)
         self._apply_failure_inputs()
 
-    def release(self, why: str = "finished") -> None:
+    def release(self, why: Status = Status.SUCCEEDED) -> None:
         """End the current decision: a transient inhibition of AEL and a habituation of the released action."""
         if self.decision is None:
             return
@@ -198,13 +201,13 @@ class Cognition:
         if self.decision in task.MOTION_ACTIONS:
             # the executor's report: a failure into AFL and AML (see _apply_failure_inputs), a success
             # clears the action's failure memory
-            if why == "failed":
+            if why is Status.FAILED:
                 self._failures[self.decision] = self.net.t
                 self._pulses[task.FAILURE_OF[self.decision]] = self.net.t
             else:
                 self._failures.pop(self.decision, None)
                 self._cleared[self.decision] = self.net.t
-        self.history.append((self.net.t, f"release ({why})", self.decision))
+        self.history.append((self.net.t, f"release ({why.value})", self.decision))
         self._released = self.decision
         self.decision = None
         self.decision_t = None
@@ -264,6 +267,18 @@ class Cognition:
         self.advance(percept.t)
         self.perceive(percept)
         return self.current()
+
+    def between(self, t: float) -> Decision:
+        """Step the fields up to ``t`` without a new percept; the decision and what rose meanwhile."""
+        self.advance(t)
+        return self.current()
+
+    def decisions(self) -> list[tuple[float, str, str]]:
+        return list(self.history)
+
+    def trace(self) -> dict[str, Any]:
+        """The peaks of the layers a log shows, at this instant."""
+        return {"peaks": {L: self.peaks(L) for L in LAYERS_SHOWN}}
 
     def current(self) -> Decision:
         d = Decision(

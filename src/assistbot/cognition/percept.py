@@ -34,9 +34,10 @@ oracle in `assistbot.cognition.oracle`):
   robot's.
 - ``robot``: proprioception. ``holding``: the object in the gripper or None;
   ``action``: the AEL action being executed or just ended (or None);
-  ``status``: "idle" | "running" | "finished" | "failed". A percept with
-  status "finished" or "failed" is an event: it releases the current
-  decision (if ``action`` is given it must name that decision).
+  ``status``: an `assistbot.interfaces.Status` ("idle" | "running" |
+  "succeeded" | "failed"). A percept with status "succeeded" or "failed" is
+  an event: it releases the current decision (if ``action`` is given it must
+  name that decision).
 
 Nothing here reads the simulator: a Percept is what cameras and joint
 sensors can tell.
@@ -47,9 +48,10 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, field
 
+from assistbot.interfaces import Status
 from assistbot.task import HAND_POSTURES, OBJECT_STATES, OBJECTS, ZONES
 
-ROBOT_STATUSES = ("idle", "running", "finished", "failed")
+ROBOT_STATUSES = tuple(s.value for s in Status)
 #: m above the table: an object seen with its base lower than this stands on the table; higher, it is
 #: lifted (in a hand)
 STANDING_Z = 0.03
@@ -122,13 +124,14 @@ class RobotPercept:
 
     holding: str | None = None
     action: str | None = None
-    status: str = "idle"
+    status: Status = Status.IDLE
 
     def validate(self) -> None:
         if self.holding is not None and self.holding not in OBJECTS:
             raise ValueError(f"robot holding {self.holding!r}; known: {', '.join(OBJECTS)} or none")
         if self.status not in ROBOT_STATUSES:
             raise ValueError(f"robot status {self.status!r}; known: {', '.join(ROBOT_STATUSES)}")
+        self.status = Status(self.status)
 
 
 @dataclass

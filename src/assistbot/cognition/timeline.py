@@ -15,10 +15,10 @@ Format::
       - t: 1.0
         hand: {posture: grasp_sg, object_in_hand: bottle, held_out: true}
       - t: 6.0
-        robot: {status: finished}
+        robot: {status: succeeded}
 
 Each event changes only the facts it names; facts hold until changed. A
-robot status "finished"/"failed" is an event: it holds for one percept and
+robot status "succeeded"/"failed" is an event: it holds for one percept and
 then returns to "idle". Mistakes raise `UserError` naming the file and key.
 """
 
@@ -33,6 +33,7 @@ from assistbot import task
 from assistbot.cognition.oracle import HAND_KEYS, OBJECT_KEYS, ROBOT_KEYS, oracle_percept
 from assistbot.cognition.percept import ROBOT_STATUSES, Percept
 from assistbot.errors import UserError, read_yaml
+from assistbot.interfaces import Status
 
 TOP_KEYS = ("name", "description", "duration", "percept_rate", "config", "events")
 EVENT_KEYS = ("t", *task.OBJECTS, "hand", "robot")
@@ -70,7 +71,7 @@ class Timeline:
         n = int(round(self.duration * self.percept_rate))
         for i in range(1, n + 1):
             t = i / self.percept_rate
-            if state.get("robot", {}).get("status") in ("finished", "failed"):
+            if state.get("robot", {}).get("status") in (Status.SUCCEEDED, Status.FAILED):
                 state["robot"] = {**state["robot"], "status": "idle", "action": None}
             while pending and pending[0]["t"] <= t + 1e-9:
                 ev = pending.pop(0)

@@ -1,7 +1,8 @@
 """The closed loop: one scenario run in simulated time, with its log, summary, figures and video.
 
 ``run_scenario("paper-fig3-4", out="render/paper-fig3-4")`` runs an episode and
-writes its outputs; `Episode` is the loop itself (see `runner`).
+writes its outputs; `Episode` is the loop itself (see `runner`), `build_episode` makes its parts
+from a scenario (see `builder`; the parts' interfaces are in `assistbot.interfaces`).
 """
 
 from __future__ import annotations
@@ -16,12 +17,13 @@ def run_scenario(spec: str | Path | Scenario, out: str | Path | None = None, per
                  seed: int | None = None, overrides: dict[str, Any] | None = None, video: bool = True,
                  progress: bool = False):
     """Run one episode; with ``out``, write log.jsonl, summary.json, subtitles.srt, figures and video.mp4 there."""
+    from assistbot.episode.builder import build_episode
     from assistbot.episode.outputs import FRAME_EVERY, VideoRecorder, add_audio, write_figures, write_log, write_srt_for, write_summary
-    from assistbot.episode.runner import Episode
+    from assistbot.interfaces import FieldAgent
 
     scenario = spec if isinstance(spec, Scenario) else load_scenario(spec)
-    ep = Episode(scenario, perception=perception, seed=seed, overrides=overrides,
-                 frame_every=FRAME_EVERY if (video and out is not None) else None)
+    ep = build_episode(scenario, perception=perception, seed=seed, overrides=overrides,
+                       frame_every=FRAME_EVERY if (video and out is not None) else None)
     out_dir = Path(out) if out is not None else None
     rec_video = None
     if out_dir is not None:
@@ -29,7 +31,7 @@ def run_scenario(spec: str | Path | Scenario, out: str | Path | None = None, per
         if video:
             rec_video = VideoRecorder(ep, out_dir / "video.mp4")
             ep.on_frame = rec_video
-    recorder = ep.cognition.record(every=20) if out_dir is not None else None
+    recorder = ep.agent.record(every=20) if out_dir is not None and isinstance(ep.agent, FieldAgent) else None
     bar = None
     if progress:
         from tqdm import tqdm
@@ -50,9 +52,7 @@ def run_scenario(spec: str | Path | Scenario, out: str | Path | None = None, per
             bar.close()
         if rec_video is not None:
             rec_video.close()
-        close = getattr(ep.perception, "close", None)
-        if close is not None:
-            close()
+        ep.perception.close()
     if out_dir is not None:
         write_log(ep, out_dir / "log.jsonl")
         write_srt_for(ep, out_dir / "subtitles.srt")

@@ -2,22 +2,21 @@
 
 An action that moves the arm runs its primitive (`assistbot.robot.actions`)
 with targets from perception; a speech act (Communicate-Error, Suggest-drink,
-Wait) lasts as long as it takes to say. Either way the executor reports
-``running`` / ``finished`` / ``failed`` as proprioception, which is how
-cognition learns that its decision was carried out.
+Wait) lasts as long as it takes to say. Either way the executor reports its
+`Status` (running, succeeded, failed) as proprioception, which is how the
+agent learns that its decision was carried out. The episode's `Actor`.
 """
 
 from __future__ import annotations
 
 from collections import deque
-from dataclasses import dataclass
 
 import numpy as np
 
-from assistbot.cognition.percept import STANDING_Z, HandPercept, Percept, away_from_hand
+from assistbot.cognition.percept import STANDING_Z, HandPercept, Percept, RobotPercept, away_from_hand
+from assistbot.interfaces import ActionRecord, Status
 from assistbot.robot.actions import ACTION_PRIMITIVES
 from assistbot.robot.controller import RobotController
-from assistbot.robot.primitives import Status
 from assistbot.speech import reading_time
 from assistbot.task import OBJECTS
 from assistbot.world.layout import OBJECT_HEIGHT
@@ -42,22 +41,13 @@ USING = ("pour", "drink")
 AFTER_USE = 3.0
 
 
-@dataclass
-class ActionRecord:
-    action: str
-    start: float
-    end: float | None = None
-    status: str = "running"
-    reason: str = ""
-
-
 class RobotExecutor:
     def __init__(self, world) -> None:
         self.world = world
         self.robot = RobotController(world.model, world.data)
         self.primitive = None
         self.action: str | None = None
-        self.status = "idle"
+        self.status = Status.IDLE
         self.reason = ""
         self._speech_until = 0.0
         self._wait_until = 0.0
@@ -84,8 +74,8 @@ class RobotExecutor:
             self._in_hand = None
         return self._in_hand
 
-    def proprioception(self) -> dict:
-        return {"holding": self.holding(), "action": self.action, "status": self.status}
+    def proprioception(self) -> RobotPercept:
+        return RobotPercept(holding=self.holding(), action=self.action, status=self.status)
 
     # -- targets from perception ---------------------------------------------------------------
     def _target_xy(self, obj: str | None):
@@ -212,7 +202,7 @@ class RobotExecutor:
     def begin(self, action: str, t: float, utterance: str = "") -> None:
         """Start carrying out ``action`` (a new AEL decision)."""
         self.action = action
-        self.status = "running"
+        self.status = Status.RUNNING
         self.reason = ""
         self.records.append(ActionRecord(action, t))
         spec = ACTION_PRIMITIVES.get(action)
@@ -270,12 +260,12 @@ class RobotExecutor:
 
     def tick(self, t: float, dt: float) -> None:
         """One control tick: advance the primitive (or the speech act) and note how it ended."""
-        if self.status != "running":
+        if self.status is not Status.RUNNING:
             self.robot.hold()
             return
         if self.primitive is None:
             if t >= self._speech_until and (self.action != "Wait" or self._partner_done(t) or t >= self._wait_until):
-                self._end(t, "finished", "")
+                self._end(t, Status.SUCCEEDED, "")
             return
         self.robot.ik.set_obstacles(self._obstacles())
         prog = self.primitive.tick(dt, self._target_xy(self._aim))
@@ -288,20 +278,21 @@ class RobotExecutor:
             name, xy = self.primitive.released
             self._last_seen[name] = self._standing[name] = xy
             self.primitive.released = None
-        if prog.status is Status.SUCCEEDED:
-            self._end(t, "finished", "")
-        elif prog.status is Status.FAILED:
-            self._end(t, "failed", prog.reason)
+        if prog.status.ended:
+            self._end(t, prog.status, prog.reason if prog.status is Status.FAILED else "")
 
-    def _end(self, t: float, status: str, reason: str) -> None:
+    def _end(self, t: float, status: Status, reason: str) -> None:
         self.status = status
         self.reason = reason
         rec = self.records[-1]
         rec.end, rec.status, rec.reason = t, status, reason
 
-    def acknowledge(self) -> None:
-        """Cognition has taken in the end of the action: back to idle."""
-        if self.status in ("finished", "failed"):
-            self.status = "idle"
-            self.action = None
-            self.primitive = None
+    def ended(self) -> ActionRecord | None:
+        """The record of the action that has just ended, once: the agent has taken in its end (in the
+        proprioception of the percept it was given), and the executor is idle again."""
+        if not self.status.ended:
+            return None
+        self.status = Status.IDLE
+        self.action = None
+        self.primitive = None
+        return self.records[-1]

@@ -24,6 +24,7 @@ import mujoco
 import numpy as np
 
 from assistbot import task
+from assistbot.interfaces import Status
 from assistbot.world import layout
 
 END_REASONS = ("drink", "stalled", "repeating", "object fell", "diverged", "time limit")
@@ -76,7 +77,7 @@ class Judge:
 
     def action_ended(self, t: float, action: str, status: str, reason: str = "") -> None:
         self._last_activity = t
-        if status == "failed":
+        if status == Status.FAILED:
             self._failures[action] += 1
             if self._failures[action] >= REPEAT_FAILURES:
                 self._end("repeating", action=action, failures=self._failures[action], last_reason=reason)

@@ -7,10 +7,13 @@ from the robot's cameras.
 
 from __future__ import annotations
 
+from typing import Callable
+
 import numpy as np
 
 from assistbot.cognition.oracle import ORACLE_LABEL, oracle_percept
-from assistbot.cognition.percept import Percept
+from assistbot.cognition.percept import Percept, RobotPercept
+from assistbot.interfaces import PartnerView
 from assistbot.world import TABLE_Z
 from assistbot.world.layout import HANDOVER_ZONE_X
 from assistbot.world.state import standing_end
@@ -18,16 +21,14 @@ from assistbot.world.state import standing_end
 __all__ = ["ORACLE_LABEL", "OraclePerception"]
 
 
-def _hand_truth(world, human) -> dict:
-    """The hand posture a perfect observer would name, from the human's arm and what it holds."""
+def _hand_truth(world, partner: PartnerView) -> dict:
+    """The hand posture a perfect observer would name, from what the person does and what the hand holds."""
     hand = world.site_pos("human_r_grasp")
     xyz = [float(hand[0]), float(hand[1]), float(hand[2] - TABLE_Z)]
     holding = world.human_holding()
     if holding not in ("bottle", "glass"):
         holding = None  # the stopper in hand is part of removing it, not an object of the task
-    posture = human.arm.posture
-    behaviour = human.current.name if human.current is not None else None
-    args = human.current.args if human.current is not None else {}
+    posture, behaviour, args = partner.posture, partner.behaviour, partner.args
     out: dict = {"position": xyz, "posture": "none", "object_in_hand": holding}
     if behaviour == "pull_stopper":
         out["posture"] = "remove_stopper"
@@ -50,18 +51,22 @@ def _hand_truth(world, human) -> dict:
 
 
 class OraclePerception:
-    """ORACLE: reads WorldState and the human's arm; never used by vision runs."""
+    """ORACLE: reads WorldState and what the person is seen to do (``partner_view``, the `Partner`'s
+    `PartnerView`); never used by vision runs."""
 
+    name = "oracle"
     label = ORACLE_LABEL
+    render_seconds = 0.0   # it draws no images
 
-    def __init__(self, world, human) -> None:
+    def __init__(self, world, partner_view: Callable[[], PartnerView]) -> None:
         self.world = world
-        self.human = human
+        self.partner_view = partner_view
 
-    def perceive(self, t: float, robot: dict) -> Percept:
+    def perceive(self, t: float, robot: RobotPercept) -> Percept:
         s = self.world.state()
         tz = TABLE_Z
-        truth: dict = {"robot": robot, "hand": _hand_truth(self.world, self.human)}
+        truth: dict = {"robot": {"holding": robot.holding, "action": robot.action, "status": robot.status},
+                       "hand": _hand_truth(self.world, self.partner_view())}
         for name in ("bottle", "glass"):
             o = s.objects[name]
             pos = standing_end(self.world, name)   # as vision places it: an inverted glass stands on its rim
@@ -76,3 +81,6 @@ class OraclePerception:
 
     def overlay(self) -> np.ndarray | None:
         return None
+
+    def close(self) -> None:
+        pass

@@ -13,7 +13,9 @@ from pathlib import Path
 
 import numpy as np
 
-from assistbot.episode.runner import LAYERS_SHOWN, Episode, EpisodeResult
+from assistbot.cognition.architecture import LAYERS_SHOWN
+from assistbot.episode.runner import Episode, EpisodeResult
+from assistbot.interfaces import FieldAgent
 from assistbot.speech import espeak_available, mux, synthesize, write_srt
 from assistbot.video import VideoWriter, compose_frame
 
@@ -32,8 +34,7 @@ class VideoRecorder:
         self.size = size
         self.renderer = Renderer(episode.world.model, width=640, height=480)
         self.writer = VideoWriter(path, fps=VIDEO_FPS)
-        label = "ORACLE perception (ground truth, not vision)" if episode.perception_mode == "oracle" else "perception: vision"
-        self.header_base = f"{episode.scenario.name}  |  seed {episode.seed}  |  {label}"
+        self.header_base = f"{episode.scenario.name}  |  seed {episode.seed}  |  {episode.perception.label}"
 
     def __call__(self, ep: Episode) -> None:
         ep.world.sync_liquid()
@@ -41,15 +42,16 @@ class VideoRecorder:
         camera = ep.perception.overlay()
         if camera is None:
             camera = self.renderer.rgb(ep.world.data, "head_cam_left")
-        net = ep.cognition.net
-        layers = [(PANEL_NAMES.get(L, L), net.activities(L)) for L in LAYERS_SHOWN]
+        layers = []
+        if isinstance(ep.agent, FieldAgent):
+            layers = [(PANEL_NAMES.get(L, L), ep.agent.net.activities(L)) for L in LAYERS_SHOWN]
         now = ep.world.time
         # the robot's reasoning while it is fresh, else what it says it is doing for as long as it does it
         recent = [u for u in ep.speech.utterances if now - u.t < 2.5]
-        if not recent and ep.robot.action:
-            recent = [u for u in ep.speech.utterances if u.source == f"AEL:{ep.robot.action}"]
+        if not recent and ep.actor.action:
+            recent = [u for u in ep.speech.utterances if u.source == f"AEL:{ep.actor.action}"]
         subtitle = recent[-1].text if recent else ""
-        action = ep.robot.action or "-"
+        action = ep.actor.action or "-"
         header = f"{self.header_base}  |  t = {ep.world.time:6.1f} s  |  robot: {action}"
         self.writer.append(compose_frame(scene, camera, layers, subtitle=subtitle, header=header, size=self.size))
 
@@ -82,12 +84,15 @@ def write_summary(result: EpisodeResult, path: Path, extra: dict | None = None) 
 
 
 def write_figures(episode: Episode, recorder, out: Path) -> list[Path]:
-    """The seed's figures (ASL/AEL input and activity, CSGL panels) from the run's field recording."""
+    """The seed's figures (ASL/AEL input and activity, CSGL panels) from the run's field recording; none
+    for an agent without fields."""
     from assistbot.cognition.figures import write_figures as cognition_figures
     from assistbot.cognition.replay import Replay
 
-    label = f"{episode.scenario.name}" + (" (ORACLE perception)" if episode.perception_mode == "oracle" else "")
-    rep = Replay(timeline=types.SimpleNamespace(name=label), cognition=episode.cognition, recorder=recorder)
+    if recorder is None or not isinstance(episode.agent, FieldAgent):
+        return []
+    label = f"{episode.scenario.name}" + (" (ORACLE perception)" if episode.perception.name == "oracle" else "")
+    rep = Replay(timeline=types.SimpleNamespace(name=label), cognition=episode.agent, recorder=recorder)
     return cognition_figures(rep, out)
 
 

@@ -24,7 +24,10 @@ from assistbot.world import TABLE_Z
 
 
 class VisionPerception:
-    label = "vision"
+    """The episode's `Perception` through the robot's head cameras."""
+
+    name = "vision"
+    label = "perception: vision"
 
     def __init__(self, world, seed: int = 0, dropout: float = 0.0, width: int = 320, height: int = 240,
                  pipelined: bool = True) -> None:
@@ -40,12 +43,12 @@ class VisionPerception:
         self.render_seconds = 0.0  # of the last call: the time the caller spent on rendering
         self.drawn_seconds = 0.0  # the renderer's own time over all pairs (on its thread when pipelined)
 
-    def _body(self, robot: dict) -> dict:
+    def _body(self, robot: RobotPercept) -> dict:
         tcp = self.world.data.site_xpos[self._tcp_site].copy()  # forward kinematics of the robot's own arm
         tcp[2] -= TABLE_Z
-        return {"tcp": tcp, "holding": robot.get("holding")}
+        return {"tcp": tcp, "holding": robot.holding}
 
-    def perceive(self, t: float, robot: dict) -> Percept:
+    def perceive(self, t: float, robot: RobotPercept) -> Percept:
         t0 = time.perf_counter()
         if self.pipelined:
             frame = self.capture.collect(self._taken) if self._taken is not None else None
@@ -61,7 +64,7 @@ class VisionPerception:
         self.drawn_seconds += frame.render_ms / 1000.0
         p = self.vision.perceive(frame, robot_holding=frame.meta.get("holding"), robot_tcp=frame.meta.get("tcp"))
         p.t = t  # delivered now, whatever instant the pixels show
-        p.robot = RobotPercept(holding=robot.get("holding"), action=robot.get("action"), status=robot.get("status", "idle"))
+        p.robot = RobotPercept(holding=robot.holding, action=robot.action, status=robot.status)
         self._frame, self._percept = frame, p
         return p.validate()
 

@@ -17,6 +17,7 @@ import numpy as np
 
 from assistbot.human.arm import SHOULDER_XY, grip_orientation, rot_y, rot_z
 from assistbot.human.perception import RobotView
+from assistbot.interfaces import Status
 from assistbot.world import layout
 from assistbot.world.state import standing_end
 
@@ -77,24 +78,24 @@ POUR_TIMEOUT = 6.0
 
 @dataclass
 class Behaviour:
-    """One running behaviour: name, arguments, status ("running", "success", "failure")."""
+    """One running behaviour: name, arguments, `Status` (running, then succeeded or failed)."""
 
     name: str
     args: dict
     gen: Gen
     t_start: float
-    status: str = "running"
+    status: Status = Status.RUNNING
     reason: str = ""
     t_end: float | None = None
 
-    def step(self, t: float) -> str:
-        if self.status != "running":
+    def step(self, t: float) -> Status:
+        if self.status is not Status.RUNNING:
             return self.status
         try:
             next(self.gen)
         except StopIteration as stop:
             ok, why = stop.value if stop.value is not None else (True, "")
-            self.status = "success" if ok else "failure"
+            self.status = Status.SUCCEEDED if ok else Status.FAILED
             self.reason = why
             self.t_end = t
         return self.status

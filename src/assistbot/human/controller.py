@@ -11,13 +11,13 @@ robot or follow-up of a finished behaviour (passive and active alike: e.g. a ful
 from the robot is drunk from) starts -- one that answers only a sight (the robot holding
 something out) while the sight lasts; otherwise the scenario script's next step whose
 `after:` event has happened; otherwise, for a profile with initiative and no script, the
-default policy (`policy.next_move`).  Every start, success and failure goes to `log`.
+default policy (`policy.next_move`).  Every start and end (`Status`) goes to `log`
+(as `assistbot.interfaces.PartnerEvent`s). The episode's `Partner`.
 """
 
 from __future__ import annotations
 
 from collections import deque
-from dataclasses import dataclass
 from typing import Callable
 
 import numpy as np
@@ -28,19 +28,12 @@ from assistbot.human.behaviours import BEHAVIOURS, Behaviour
 from assistbot.human.perception import RobotView, see_robot
 from assistbot.human.profiles import PROFILES, Profile
 from assistbot.human.script import HumanConfig, Step
+from assistbot.interfaces import PartnerEvent as Event, PartnerView, Status
 
 #: s between two looks at the robot (a person's eyes sample the scene ~10 times a second)
 LOOK_PERIOD = 0.1
 #: s between two consultations of the default policy while idle
 DECISION_PERIOD = 0.1
-
-
-@dataclass(frozen=True)
-class Event:
-    t: float
-    kind: str       # "start", "success", "failure", "heard", "saw", "clamped", "note"
-    what: str
-    detail: dict
 
 
 def _key(resp: tuple[str, dict]) -> tuple:
@@ -124,8 +117,8 @@ class HumanController:
         if self._pending and self.current is not None and (not busy or goes_on):
             # the robot asked for something: stop waiting for what we were doing, answer it
             b = self.current
-            b.status, b.reason, b.t_end = "failure", f"interrupted by the robot ({tag})", self.t
-            self.log.append(Event(self.t, "failure", b.name, {"reason": b.reason, **b.args}))
+            b.status, b.reason, b.t_end = Status.FAILED, f"interrupted by the robot ({tag})", self.t
+            self.log.append(Event(self.t, Status.FAILED.value, b.name, {"reason": b.reason, **b.args}))
             self.done.append(b)
             self.current = None
 
@@ -158,7 +151,7 @@ class HumanController:
         if kind == "glass_upright":
             return st.data.xmat[st.body_id["glass"]][8] > 0.9
         if kind == "done":
-            return any(b.name == arg and b.status == "success" for b in self.done)
+            return any(b.name == arg and b.status is Status.SUCCEEDED for b in self.done)
         if kind == "time":
             return self.t >= float(arg)
         raise ValueError(f"unknown event {kind!r}")
@@ -205,12 +198,12 @@ class HumanController:
         self._perceive(self.t)
         if self.current is not None:
             status = self.current.step(self.t)
-            if status != "running":
+            if status.ended:
                 b = self.current
-                self.log.append(Event(self.t, status, b.name, {"reason": b.reason, **b.args}))
+                self.log.append(Event(self.t, status.value, b.name, {"reason": b.reason, **b.args}))
                 self.done.append(b)
                 self.current = None
-                if status == "success":
+                if status is Status.SUCCEEDED:
                     for resp in policy.follow_up(self, b):
                         if resp not in self._pending:
                             self._pending.append(resp)
@@ -235,6 +228,12 @@ class HumanController:
             for _ in range(self.physics_steps):
                 self.world.step(1)
             t = self.world.time
+
+    def appearance(self) -> PartnerView:
+        """What an observer sees the person do: the behaviour under way and the hand's posture."""
+        b = self.current
+        return PartnerView(behaviour=b.name if b is not None else None, args=dict(b.args) if b is not None else {},
+                           posture=self.arm.posture)
 
     def events(self, kind: str | None = None) -> list[Event]:
         return [e for e in self.log if kind is None or e.kind == kind]

@@ -16,6 +16,7 @@ from typing import Callable
 from assistbot.human.controller import HumanController
 from assistbot.human.script import parse_human
 from assistbot.human.standin import StandIn, build_world_with_standin
+from assistbot.interfaces import Status
 from assistbot.world import Arrangement, World, layout
 
 
@@ -33,7 +34,7 @@ class Demo:
                 "open_hand" (holds its open hand out and takes what it is given)
     say         (time, tag): an utterance the human hears
     limit       s of simulated time at most
-    expect      the outcome the physics should give ("failure" for the stopper pulled alone)
+    expect      the outcome the physics should give (failed for the stopper pulled alone)
     """
 
     objects: dict
@@ -45,7 +46,7 @@ class Demo:
     profile: str = "passive"
     limit: float = 25.0
     caption: str = ""
-    expect: str = "success"    # the outcome the physics should give
+    expect: Status = Status.SUCCEEDED    # the outcome the physics should give
 
 
 _B_HWS = {"zone": "HWS", "state": "closed"}
@@ -79,7 +80,7 @@ DEMOS: dict[str, Demo] = {
                          say=(3.0, "invite:remove_stopper"),
                          caption="pulls the stopper while the robot holds the bottle"),
     "pull_stopper_alone": Demo({"bottle": _B_HWS, "glass": _G_RWS}, "pull_stopper", ("pull_stopper", {}),
-                               caption="tries to pull the stopper alone: the bottle lifts", expect="failure"),
+                               caption="tries to pull the stopper alone: the bottle lifts", expect=Status.FAILED),
     "turn_glass": Demo({"bottle": _B_RWS, "glass": {"zone": "HWS", "state": "inverted"}}, "turn_glass",
                        ("turn_glass", {}), caption="turns the inverted glass upright"),
     "drink": Demo({"bottle": _B_RWS, "glass": {"zone": "HWS", "state": "full"}}, "drink", ("drink", {}),
@@ -93,7 +94,7 @@ class DemoResult:
     world: World
     controller: HumanController
     standin: StandIn
-    status: str          # "success", "failure" or "running" (time limit)
+    status: Status       # succeeded, failed, or still running at the time limit
     reason: str
 
 
@@ -147,6 +148,6 @@ def run_demo(name: str, seed: int = 0, tail: float = 1.0,
             break
     ended = [b for b in hc.done if b.name == demo.behaviour]
     if not ended:
-        return DemoResult(name, w, hc, s, "running", f"{demo.behaviour} did not end within {demo.limit:g} s")
+        return DemoResult(name, w, hc, s, Status.RUNNING, f"{demo.behaviour} did not end within {demo.limit:g} s")
     b = ended[-1]
     return DemoResult(name, w, hc, s, b.status, b.reason)

@@ -34,7 +34,6 @@ Callbacks a caller passes as keywords (every primitive accepts them; see `Primit
 
 from __future__ import annotations
 
-import enum
 import math
 from dataclasses import dataclass
 from typing import Callable
@@ -42,6 +41,7 @@ from typing import Callable
 import mink
 import numpy as np
 
+from assistbot.interfaces import Status
 from assistbot.robot import poses
 from assistbot.robot.controller import REACH, TCP_MIN_X, RobotController
 from assistbot.robot.gripper import PRESS_N, Gripper
@@ -52,12 +52,6 @@ from assistbot.world.layout import BOTTLE_BODY_TOP, OBJECT_HEIGHT, OBJECT_RADIUS
 
 UNREACHABLE_PATIENCE = 0.3  # s in all that a Move's target may be out of reach before the move fails (3 perception ticks)
 REACH_WAIT = 12.0           # s a reaching-out move waits for its goal to come within reach
-
-
-class Status(enum.Enum):
-    RUNNING = "running"
-    SUCCEEDED = "succeeded"
-    FAILED = "failed"
 
 
 @dataclass
