@@ -134,39 +134,6 @@ def test_standing_object_with_its_base_hidden_in_one_camera_is_placed_not_droppe
     world.reset()
 
 
-def test_compiled_and_numpy_passes_give_the_same_detections(world, monkeypatch):
-    """The per-pixel passes run as numba kernels when numba is there, as numpy and OpenCV otherwise:
-    the same detections, bit for bit, either way."""
-    from assistbot.vision import segment
-    from assistbot.vision.detect import Detector
-    from assistbot.vision.library import load_calibration
-    if segment._kernels is None:
-        pytest.skip("numba is not installed: only the numpy path runs")
-    cal = load_calibration()
-    sampler = SceneSampler(4, "test")
-    with StereoCapture(world.model) as cap:
-        frames = []
-        for posture in ("grasp_ag", "pointing", "pour", "remove_stopper", "none"):
-            pose(world, sampler.sample(posture))
-            frames.append(cap.grab(world.data))
-    compiled = [Detector(cal)(f.left, f.right, f.cams) for f in frames]
-    monkeypatch.setattr(segment, "_kernels", None)
-    plain = [Detector(cal)(f.left, f.right, f.cams) for f in frames]
-    for a, b in zip(compiled, plain):
-        assert np.array_equal(a.labels[0], b.labels[0]) and np.array_equal(a.labels[1], b.labels[1])
-        for name in ("bottle", "glass"):
-            oa, ob = a.objects[name], b.objects[name]
-            assert oa.visible == ob.visible and oa.extent == ob.extent and oa.tilt == ob.tilt
-            assert (oa.position is None) == (ob.position is None)
-            assert oa.position is None or np.array_equal(oa.position, ob.position)
-            assert (oa.feat is None) == (ob.feat is None) and (oa.feat is None or np.array_equal(oa.feat, ob.feat))
-        assert a.hand.visible == b.hand.visible
-        if a.hand.visible:
-            assert np.array_equal(a.hand.position, b.hand.position) and np.array_equal(a.hand.geo, b.hand.geo)
-            assert np.array_equal(a.hand.crop, b.hand.crop)
-    world.reset()
-
-
 def test_missing_library_is_a_user_error_naming_the_command(tmp_path, capsys):
     with pytest.raises(UserError, match="assistbot templates"):
         Vision(root=tmp_path)
@@ -323,22 +290,6 @@ def test_segmentation_labels_split_skin_and_shirt(world):
     with Renderer(world.model, 160, 120) as r:
         seg = r.segmentation(world.data, "head_cam_left")
     assert {inv["skin"], inv["shirt"]} <= set(np.unique(seg).tolist())
-
-
-def test_colour_table_labels_every_colour_as_its_hsv_boxes_say():
-    """The 24-bit gather gives each pixel the label of its 6-bit colour bucket (the compiled table),
-    at full and at half resolution (every other pixel, as cv2.resize's nearest neighbour picks)."""
-    from assistbot.vision.library import load_calibration
-    from assistbot.vision.segment import ColourTable
-
-    table = ColourTable(load_calibration()["hsv"])
-    rng = np.random.default_rng(0)
-    img = rng.integers(0, 256, (40, 50, 3), dtype=np.uint8)
-    q = (img >> 2).astype(np.int64)
-    want = table.lut[(q[..., 0] << 12) | (q[..., 1] << 6) | q[..., 2]]
-    assert np.array_equal(table.labels(img), want)
-    assert np.array_equal(table.labels(img, 2), want[::2, ::2])
-    assert np.array_equal(table.labels(img[5:17, 3:30]), want[5:17, 3:30])   # a non-contiguous region of interest
 
 
 def test_accuracy_interval_narrows_with_the_set_and_contains_the_accuracy():
