@@ -1,13 +1,15 @@
-"""The compiled path of `assistbot.vision.segment`: numba kernels for the per-pixel passes.
+"""Vision's per-pixel passes, compiled with numba (`segment`, `detect` and `body` call them).
 
 Why compiled: the benchmark (and the episode loop) renders each stereo pair right before vision
 processes it, and the render evicts the CPU caches; every separate numpy/OpenCV pass over an
 image then reads it back from memory, and every separate call runs its own cold code.  One loop
 per image that labels, clears and masks in a single read replaces ~10 such passes.
 
-Integer work only (table look-ups, comparisons): the results are those of the numpy path, bit for
-bit.  Imported only when numba is available (`segment` falls back to numpy); kernels at module level
-so numba's on-disk cache finds them again in a new process.
+Where a kernel stands for an OpenCV function (cv2.boundingRect, cv2.moments, connected components
+numbered as cv2.connectedComponents numbers them, Sobel and cartToPolar, morphological opening) it
+gives OpenCV's results bit for bit: integer work, or OpenCV's own float32 operations in its order;
+the tests compare them.  Kernels at module level so numba's on-disk cache finds them again in a new
+process.
 """
 
 from __future__ import annotations
@@ -26,13 +28,13 @@ def _code(px):
 
 @numba.njit(cache=True, nogil=True)
 def label_half(img, lut, spots, stamp, clear, lo, hi):
-    """Labels of every 2nd pixel of every 2nd row of an RGB image (H, W even), by the 64^3
+    """Labels of every 2nd pixel of every 2nd row of an RGB image (img[::2, ::2]), by the 64^3
     table of the colour's top 6 bits per channel; label ``clear`` removed (0) where the `stamp` (a
     structuring element, odd size, anchor at its centre) dilated around the points ``spots``
-    (half-resolution (u, v) floats; non-finite ones and those truncated outside the image skipped,
-    as the numpy path does) covers it; and the bounding box (x, y, w, h; as cv2.boundingRect, 0s if
-    empty) of the pixels of each label range [lo[k], hi[k]]."""
-    H2, W2 = img.shape[0] // 2, img.shape[1] // 2
+    (half-resolution (u, v) floats; non-finite ones and those truncated outside the image skipped)
+    covers it; and the bounding box (x, y, w, h; as cv2.boundingRect, 0s if empty) of the pixels of
+    each label range [lo[k], hi[k]]."""
+    H2, W2 = (img.shape[0] + 1) // 2, (img.shape[1] + 1) // 2
     lab = np.empty((H2, W2), np.uint8)
     for y in range(H2):
         row = img[2 * y]
@@ -478,8 +480,7 @@ def _homog(P, k, X, i):
 def capsules_cover(a, b, r, P, f, margin, pts):
     """`body.RobotBody.covers`: whether any pixel of pts (M, 2) lies on the image of a capsule (ends
     a, b (N, 3), radius r, in the frame of the camera matrix P (3, 4)): its ends projected, the
-    segment between them widened by f * r over the nearer end's depth plus margin px.  The same
-    sums in the same order as the numpy path."""
+    segment between them widened by f * r over the nearer end's depth plus margin px."""
     for i in range(r.shape[0]):
         za, zb = _homog(P, 2, a, i), _homog(P, 2, b, i)
         if not (za > 1e-6 and zb > 1e-6):

@@ -19,7 +19,7 @@ from dataclasses import dataclass
 import mujoco
 import numpy as np
 
-from assistbot.vision import segment
+from assistbot.vision import _kernels
 from assistbot.vision.camera import CameraModel
 from assistbot.world import layout
 
@@ -73,27 +73,6 @@ class RobotBody:
     def covers(self, cam: CameraModel, uv) -> bool:
         """Whether any pixel of uv (M, 2) lies on the image of a capsule: its ends projected, the
         segment between them as wide as the capsule at its nearer end's depth (+ `MARGIN_PX`);
-        capsules (partly) behind the camera are left out.  Compiled when numba is there."""
+        capsules (partly) behind the camera are left out.  One compiled loop."""
         pts = np.ascontiguousarray(np.asarray(uv, float).reshape(-1, 2))
-        P, f = cam.P, float(cam.K[0, 0])
-        if segment._kernels is not None:
-            return bool(segment._kernels.capsules_cover(self.a, self.b, self.r, P, f, MARGIN_PX, pts))
-        a, b = self.a, self.b
-
-        def homog(k, X):   # the kernel's sums, term by term (not a matrix product: BLAS orders its additions)
-            return P[k, 0] * X[:, 0] + P[k, 1] * X[:, 1] + P[k, 2] * X[:, 2] + P[k, 3]
-
-        za, zb = homog(2, a), homog(2, b)
-        ok = (za > 1e-6) & (zb > 1e-6)
-        if not ok.any():
-            return False
-        a, b, r, za, zb = a[ok], b[ok], self.r[ok], za[ok], zb[ok]
-        ua, va = homog(0, a) / za, homog(1, a) / za
-        ub, vb = homog(0, b) / zb, homog(1, b) / zb
-        rad = f * r / np.minimum(za, zb) + MARGIN_PX
-        dx, dy = ub - ua, vb - va
-        L2 = np.maximum(dx * dx + dy * dy, 1e-12)
-        px, py = pts[:, :1] - ua, pts[:, 1:] - va                 # (M, N)
-        t = np.minimum(np.maximum((px * dx + py * dy) / L2, 0.0), 1.0)
-        ex, ey = px - t * dx, py - t * dy
-        return bool((ex * ex + ey * ey < rad * rad).any())
+        return bool(_kernels.capsules_cover(self.a, self.b, self.r, cam.P, float(cam.K[0, 0]), MARGIN_PX, pts))

@@ -129,7 +129,7 @@ def _static_skin(frames, ranges) -> list[list[float]]:
     table = ColourTable(ranges)
     pts = []
     for f, lab in frames:
-        bl = [components(table.labels(im, 2) == LABEL["skin"], "skin", 6)[0] for im in (f.left, f.right)]
+        bl = [components(table.half(im)[0] == LABEL["skin"], "skin", 6)[0] for im in (f.left, f.right)]
         hand = np.array(lab.hand_position)
         for a in bl[0]:
             cands = [b for b in bl[1] if abs(b.centroid[1] - a.centroid[1]) < 12 and 0 < a.centroid[0] - b.centroid[0] < 120]

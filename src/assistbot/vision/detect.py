@@ -40,7 +40,7 @@ from dataclasses import dataclass, field
 import cv2
 import numpy as np
 
-from assistbot.vision import segment
+from assistbot.vision import _kernels
 from assistbot.vision.body import RobotBody
 from assistbot.vision.camera import CameraModel, expected_boxes, on_plane, triangulate
 from assistbot.vision.segment import LABEL, Blob, ColourTable, blob_pixels, components_each, count_near, first_row_over, masked_saturation
@@ -174,29 +174,17 @@ def _match(a: Blob, cands: list[Blob]) -> Blob | None:
     return best
 
 
-_HOG_CELLS: dict[tuple[int, int], tuple[np.ndarray, int]] = {}
-
-
 def outline_hog(crop: np.ndarray) -> np.ndarray:
-    """A histogram of oriented gradients of a hand crop (its skin mask): per `HOG_CELL`-px cell, the
-    gradient magnitude summed over `HOG_BINS` unsigned orientations, normalised over the crop.  The
-    matched prototypes score the whole outline; this says where its edges run which way (an index
-    finger's two long edges, an open hand's several), which tells reach from pointing."""
-    c = crop.astype(np.float32, copy=False)
-    h, w = c.shape
-    if segment._kernels is not None and h % HOG_CELL == 0 and w % HOG_CELL == 0:   # whole cells (the template: 24 x 24)
-        # one compiled pass: OpenCV's gradients and arctangent, its sums
-        out = segment._kernels.gradient_histogram(np.ascontiguousarray(c), HOG_CELL, HOG_BINS).astype(np.float32)
-        return out / (np.linalg.norm(out) + 1e-3)
-    # central differences and their polar form: OpenCV's calls, as numpy's cost more than the sums here
-    mag, ang = cv2.cartToPolar(cv2.Sobel(c, cv2.CV_32F, 1, 0, ksize=1), cv2.Sobel(c, cv2.CV_32F, 0, 1, ksize=1))
-    if c.shape not in _HOG_CELLS:
-        n = w // HOG_CELL
-        _HOG_CELLS[c.shape] = (((np.arange(h)[:, None] // HOG_CELL) * n + np.arange(w)[None, :] // HOG_CELL).ravel() * HOG_BINS,
-                               n * (h // HOG_CELL) * HOG_BINS)
-    cell, size = _HOG_CELLS[c.shape]
-    b = (ang.ravel() * (HOG_BINS / np.pi)).astype(np.intp) % HOG_BINS     # angle in [0, 2 pi): unsigned bins
-    out = np.bincount(cell + b, mag.ravel(), size).astype(np.float32)
+    """A histogram of oriented gradients of a hand crop (its skin mask, the template size: whole
+    cells): per `HOG_CELL`-px cell, the gradient magnitude summed over `HOG_BINS` unsigned
+    orientations, normalised over the crop.  The matched prototypes score the whole outline; this
+    says where its edges run which way (an index finger's two long edges, an open hand's several),
+    which tells reach from pointing.  One compiled pass: OpenCV's gradients and arctangent."""
+    h, w = crop.shape
+    if h % HOG_CELL or w % HOG_CELL:
+        raise ValueError(f"a {w}x{h} crop is not whole {HOG_CELL}-px cells")
+    c = np.ascontiguousarray(crop, np.float32)
+    out = _kernels.gradient_histogram(c, HOG_CELL, HOG_BINS).astype(np.float32)
     return out / (np.linalg.norm(out) + 1e-3)
 
 
@@ -227,18 +215,10 @@ def finger_parts(skin: np.ndarray, cm_per_px: float) -> np.ndarray:
         return out
     m = skin.view(np.uint8)
     a2 = cm_per_px * cm_per_px
-    if segment._kernels is not None:    # one compiled call: the openings' residues and their pieces
-        for k, (total, largest, w, h) in enumerate(segment._kernels.thin_pieces(m, _OPEN_SPANS).tolist()):
-            if total:
-                out[3 * k:3 * k + 3] = (float(total) * a2, float(largest) * a2, math.hypot(w, h) * cm_per_px)
-        return out
-    for k, disc in enumerate(_OPEN):
-        thin = cv2.subtract(m, cv2.morphologyEx(m, cv2.MORPH_OPEN, disc))
-        n, _, st, _ = cv2.connectedComponentsWithStats(thin, connectivity=8)
-        if n > 1:
-            j = 1 + int(np.argmax(st[1:, cv2.CC_STAT_AREA]))
-            out[3 * k:3 * k + 3] = (float(st[1:, cv2.CC_STAT_AREA].sum()) * a2, float(st[j, cv2.CC_STAT_AREA]) * a2,
-                                    math.hypot(st[j, cv2.CC_STAT_WIDTH], st[j, cv2.CC_STAT_HEIGHT]) * cm_per_px)
+    # one compiled call: the openings' residues and their pieces
+    for k, (total, largest, w, h) in enumerate(_kernels.thin_pieces(m, _OPEN_SPANS).tolist()):
+        if total:
+            out[3 * k:3 * k + 3] = (float(total) * a2, float(largest) * a2, math.hypot(w, h) * cm_per_px)
     return out
 
 
@@ -382,12 +362,11 @@ class Detector:
         self.arm_root = np.array(calibration["arm_root"], float) if "arm_root" in calibration else None
         self._margin = cv2.getStructuringElement(cv2.MORPH_ELLIPSE, (2 * STATIC_MARGIN + 1,) * 2)
         # compile (or load from numba's cache) the hand's and the arm's kernels now, not in the first frame
-        if segment._kernels is not None:
-            outline_hog(np.zeros(CROP["hand"][::-1], np.float32))
-            finger_parts(np.ones((3, 3), bool), 1.0)
-            z = np.zeros((1, 3))
-            segment._kernels.capsules_cover(z, z, np.zeros(1), np.eye(3, 4), 1.0, 1.0, np.zeros((1, 2)))
-            segment._kernels.project_half(z, np.zeros(3), np.eye(3), np.eye(3))
+        outline_hog(np.zeros(CROP["hand"][::-1], np.float32))
+        finger_parts(np.ones((3, 3), bool), 1.0)
+        z = np.zeros((1, 3))
+        _kernels.capsules_cover(z, z, np.zeros(1), np.eye(3, 4), 1.0, 1.0, np.zeros((1, 2)))
+        _kernels.project_half(z, np.zeros(3), np.eye(3), np.eye(3))
 
     def __call__(self, left: np.ndarray, right: np.ndarray, cams: tuple[CameraModel, CameraModel],
                  body: RobotBody | None = None) -> Detections:
@@ -409,12 +388,9 @@ class Detector:
         return det
 
     def static_spots(self, cam: CameraModel) -> np.ndarray:
-        """The static skin cells' projections in a half-resolution image of this camera ((N, 2) u, v);
-        compiled when numba is there (the same pixels: its sums differ from BLAS's in the last bits,
-        which the stamp's truncation to whole pixels does not see)."""
-        if segment._kernels is not None:
-            return segment._kernels.project_half(self.static_cells, cam.C, cam.R, cam.K)
-        return cam.project(self.static_cells) * 0.5
+        """The static skin cells' projections in a half-resolution image of this camera ((N, 2) u, v),
+        in one compiled loop."""
+        return _kernels.project_half(self.static_cells, cam.C, cam.R, cam.K)
 
     @staticmethod
     def _held(o: ObjectDetection, hand: HandDetection) -> None:
