@@ -41,7 +41,6 @@ from assistbot.world.world import (
     GRIPPER_CLOSED,
     GRIPPER_OPEN,
     HAND_POSTURES,
-    HOME,
     HUMAN_ARM_JOINTS,
     HUMAN_HAND_JOINTS,
     ROBOT_ARM_ACTUATORS,
@@ -55,7 +54,7 @@ from assistbot.world.world import (
 
 __all__ = [
     "Arrangement", "Placement", "PAPER_ARRANGEMENTS", "all_arrangements", "build_world", "World",
-    "WorldState", "ObjectState", "LiquidState", "TABLE_Z", "zone_of", "CAMERAS", "HAND_POSTURES", "HOME",
+    "WorldState", "ObjectState", "LiquidState", "TABLE_Z", "zone_of", "CAMERAS", "HAND_POSTURES",
     "HUMAN_ARM_JOINTS", "HUMAN_HAND_JOINTS", "ROBOT_ARM_JOINTS", "ROBOT_ARM_ACTUATORS",
     "ROBOT_FINGER_ACTUATORS", "ROBOT_HEAD_JOINTS", "GRIPPER_OPEN", "GRIPPER_CLOSED", "STOPPER_RELEASE_FORCE",
 ]
