@@ -89,10 +89,10 @@ def test_options_parse_and_name_the_option():
     assert exc.value.key == "--glass"
 
 
-def test_home_keyframe_matches_HOME():
-    from assistbot.world import HOME
-
+def test_world_starts_at_the_scenes_home_keyframe():
     w = build_world(PAPER_ARRANGEMENTS["fig4"])
-    for joint, value in HOME.items():
-        assert w.qpos(joint) == pytest.approx(value)
-        assert w.data.ctrl[w.actuator(joint)] == pytest.approx(value)
+    m, home = w.model, w.model.key("home")
+    for a in range(m.nu):
+        joint = m.actuator(a).trnid[0]
+        assert w.qpos(m.joint(joint).name) == home.qpos[m.jnt_qposadr[joint]]
+        assert w.data.ctrl[a] == home.ctrl[a]

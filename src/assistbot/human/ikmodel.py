@@ -1,7 +1,7 @@
 """A small MuJoCo model of the human's right arm alone, for inverse kinematics.
 
-Built from assets/mjcf/human.xml (the same file the scene includes) with the fingers, the
-welds, actuators and sensors removed: 7 joints, a handful of bodies, so that one
+Built from assets/mjcf/human.xml (the same file the scene includes, a model that compiles on its
+own) with the fingers, actuators and sensors removed: 7 joints, a handful of bodies, so that one
 kinematics pass and one Jacobian cost a few microseconds instead of the whole scene's
 (the scene has ~290 degrees of freedom, mostly liquid particles).  The human body sits at
 an absolute position in the world, so site positions here equal world positions.
@@ -23,7 +23,7 @@ HUMAN_XML: Path = MJCF / "human.xml"
 @lru_cache(maxsize=1)
 def arm_model_xml() -> str:
     root = ET.fromstring(HUMAN_XML.read_text())
-    for tag in ("equality", "actuator", "sensor", "contact"):
+    for tag in ("actuator", "sensor", "contact"):
         for e in root.findall(tag):
             root.remove(e)
     hand = root.find(".//body[@name='human_r_hand']")
@@ -31,14 +31,11 @@ def arm_model_xml() -> str:
         raise RuntimeError(f"{HUMAN_XML}: no body human_r_hand")
     for b in hand.findall("body"):
         hand.remove(b)
-    for e in root.iter():
-        e.attrib.pop("material", None)
     body = root.find(".//body[@name='human_body']")
     for g in list(body):
         if g.tag == "geom" or (g.tag == "site" and g.get("name") not in ("human_mouth", "human_eyes")):
             body.remove(g)
     root.set("model", "human_arm_ik")
-    root.insert(0, ET.fromstring('<compiler angle="radian" autolimits="true"/>'))
     return ET.tostring(root, encoding="unicode")
 
 

@@ -7,7 +7,7 @@ centre of the table top (world z = 0.75).  The middle line is x = 0; x < 0 is th
 workspace (HWS), x > 0 the robot's (RWS).  The table spans |x| <= 0.40, |y| <= 0.55.
 
 Why `mujoco.MjSpec` (and not dm_control's mjcf): the scene is one hand-written MJCF file
-(assets/mjcf/scene.xml including robot.xml, human.xml, table.xml, objects.xml, liquid.xml)
+(assets/mjcf/scene.xml including robot.xml, human.xml, table.xml, objects.xml with liquid.xml)
 that opens in `python -m mujoco.viewer` as is; an arrangement only changes initial poses,
 so the native loader is enough and keeps the model a plain MjModel that mink and
 mujoco.Renderer use directly, with no second naming layer and no dm_control/mujoco version
@@ -41,7 +41,6 @@ from assistbot.world.world import (
     GRIPPER_CLOSED,
     GRIPPER_OPEN,
     HAND_POSTURES,
-    HOME,
     HUMAN_ARM_JOINTS,
     HUMAN_HAND_JOINTS,
     ROBOT_ARM_ACTUATORS,
@@ -55,7 +54,7 @@ from assistbot.world.world import (
 
 __all__ = [
     "Arrangement", "Placement", "PAPER_ARRANGEMENTS", "all_arrangements", "build_world", "World",
-    "WorldState", "ObjectState", "LiquidState", "TABLE_Z", "zone_of", "CAMERAS", "HAND_POSTURES", "HOME",
+    "WorldState", "ObjectState", "LiquidState", "TABLE_Z", "zone_of", "CAMERAS", "HAND_POSTURES",
     "HUMAN_ARM_JOINTS", "HUMAN_HAND_JOINTS", "ROBOT_ARM_JOINTS", "ROBOT_ARM_ACTUATORS",
     "ROBOT_FINGER_ACTUATORS", "ROBOT_HEAD_JOINTS", "GRIPPER_OPEN", "GRIPPER_CLOSED", "STOPPER_RELEASE_FORCE",
 ]

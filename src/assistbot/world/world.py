@@ -66,11 +66,6 @@ _CLOSED_MIN = {"human_r_index_prox": 0.6, "human_r_fingers_prox": 0.6, "human_r_
 GRIPPER_OPEN = -0.3
 GRIPPER_CLOSED = 1.6
 
-#: Home posture: joint -> angle (also the scene's `home` keyframe).
-HOME = {"robot_head_tilt": 0.75, "robot_j1": 0.1, "robot_j4": 0.8, "robot_j6": -0.4,
-        "human_r_shoulder_flex": 0.35, "human_r_elbow": 1.7,
-        "human_r_forearm_rot": 1.2}
-
 
 def build_world(arrangement: Arrangement, seed: int = 0) -> "World":
     """Load the scene and place bottle, stopper, glass and liquid as `arrangement` says.
@@ -131,7 +126,7 @@ class World:
     def reset(self) -> None:
         """Put everything at its arrangement's starting pose (time 0, home posture)."""
         m, d = self.model, self.data
-        mujoco.mj_resetDataKeyframe(m, d, m.key("home").id)  # robot and human at HOME, servos holding it
+        mujoco.mj_resetDataKeyframe(m, d, m.key("home").id)  # robot and human at the scene's home posture, servos holding it
         d.eq_active[:] = m.eq_active0
         for o in OBJECTS:
             d.eq_active[self.eq_hold[o]] = 0
