@@ -274,34 +274,6 @@ class Rise(Move):
 READY_POSE_POS = np.array([0.30, 0.05, 1.00])
 
 
-class MoveJoints(Phase):
-    """Minimum-jerk motion of the arm in joint space to a posture (no IK: always feasible within limits)."""
-
-    def __init__(self, name: str, q_goal: np.ndarray, duration: float = 2.0, tolerance: float = 0.08,
-                 settle: float = 1.5) -> None:
-        self.name, self.q_goal, self.duration = name, np.asarray(q_goal, float), duration
-        self.tolerance, self.timeout = tolerance, duration + settle
-
-    def start(self, prim):
-        self.q0 = prim.robot.q_cmd.copy()
-        # no faster than 60 % of the joint speed limits (peak min-jerk speed = 1.875 x mean)
-        span = np.max(np.abs(self.q_goal - self.q0) * 1.875 / (0.6 * prim.robot.ik.max_speed))
-        self.duration = max(self.duration, float(span))
-        self.timeout = self.duration + 1.5
-
-    def tick(self, prim, dt, t):
-        s = poses.min_jerk(t / self.duration)
-        prim.robot.q_cmd = self.q0 + s * (self.q_goal - self.q0)
-        prim.robot.hold()
-        if t >= self.duration:
-            err = float(np.max(np.abs(prim.robot.q() - self.q_goal)))
-            if err < self.tolerance:
-                return Status.SUCCEEDED, ""
-            if t >= self.timeout:
-                return Status.FAILED, f"{self.name}: the arm is held back ({err:.2f} rad from the posture)"
-        return Status.RUNNING, ""
-
-
 class Primitive:
     """Base: runs ``phases()`` in order; checks that a grasped object stays in the hand while ``carrying``."""
 
