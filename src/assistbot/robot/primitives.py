@@ -34,9 +34,7 @@ Callbacks a caller passes as keywords (every primitive accepts them; see `Primit
 
 from __future__ import annotations
 
-import enum
 import math
-from dataclasses import dataclass
 from typing import Callable
 
 import mink
@@ -44,232 +42,28 @@ import numpy as np
 
 from assistbot.robot import poses
 from assistbot.robot.controller import REACH, TCP_MIN_X, RobotController
-from assistbot.robot.gripper import PRESS_N, Gripper
+from assistbot.robot.gripper import Gripper
+from assistbot.robot.phases import (
+    BackOff,
+    Grip,
+    LowerUntilSupported,
+    Move,
+    Open,
+    Phase,
+    Relative,
+    RememberPlace,
+    Rise,
+    Roll,
+    SetCarrying,
+    Wait,
+    WaitFor,
+    WaitForTake,
+)
 from assistbot.robot.placement import put_down_spot, segment_distance, shared_spot
+from assistbot.robot.progress import Progress, Status
 from assistbot.robot.target_field import TargetField
 from assistbot.task import OBJECTS
 from assistbot.world.layout import BOTTLE_BODY_TOP, OBJECT_HEIGHT, OBJECT_RADIUS, STOPPER_HEIGHT, TABLE_Z
-
-UNREACHABLE_PATIENCE = 0.3  # s in all that a Move's target may be out of reach before the move fails (3 perception ticks)
-REACH_WAIT = 12.0           # s a reaching-out move waits for its goal to come within reach
-
-
-class Status(enum.Enum):
-    RUNNING = "running"
-    SUCCEEDED = "succeeded"
-    FAILED = "failed"
-
-
-@dataclass
-class Progress:
-    status: Status
-    phase: str = ""
-    reason: str = ""
-    t: float = 0.0
-
-
-class Phase:
-    """One step of a primitive. ``fallback(prim)``, when a phase has one, gives the phases that end the
-    primitive safely after that phase failed (setting down what the hand holds, say); the primitive then
-    runs them and still reports the failure."""
-
-    name = "phase"
-    timeout = 5.0
-    fallback: Callable[["Primitive"], list["Phase"]] | None = None
-
-    def start(self, prim: "Primitive") -> None:
-        pass
-
-    def tick(self, prim: "Primitive", dt: float, t: float) -> tuple[Status, str]:
-        raise NotImplementedError
-
-
-class Move(Phase):
-    """Minimum-jerk TCP motion from the current commanded pose to ``goal(prim)`` (re-read every tick).
-
-    ``reach_out``: a goal out of the arm's reach (an object the person holds out too far) is not a
-    failure at once: the hand goes as far toward it as it can and waits there, open, up to REACH_WAIT
-    s, for the goal to come within reach (the person, seeing the hand held out for what they hold,
-    brings it closer); the move then goes on to the goal itself."""
-
-    def __init__(self, name: str, goal: Callable[["Primitive"], mink.SE3], duration: float = 1.5,
-                 tolerance: float = 0.02, settle: float = 1.5, check_reach: bool = True, reach_out: bool = False) -> None:
-        self.name, self.goal, self.duration = name, goal, duration
-        self.tolerance, self.settle, self.check_reach, self.reach_out = tolerance, settle, check_reach, reach_out
-        self.timeout = duration + settle
-
-    def start(self, prim: "Primitive") -> None:
-        self.origin = prim.robot.commanded_tcp_pose()
-        self.failures = 0
-        self.unreachable = 0.0  # s this move's target has been out of reach
-        self.waited = 0.0       # s spent reaching out toward an unreachable goal
-        self.reaching = False   # reaching out right now
-        self.t0 = 0.0           # phase time the move (re)started at
-
-    @staticmethod
-    def _within_reach(prim, goal: mink.SE3) -> mink.SE3:
-        """The goal moved back along the line to the shoulder until the arm reaches it, never deeper into the
-        HWS than TCP_MIN_X: the open hand held out in front of what it reaches for, fingers toward it."""
-        pos = goal.translation().copy()
-        sh = prim.robot.shoulder
-        d = float(np.linalg.norm(pos - sh))
-        if d > REACH - 0.005:
-            pos = sh + (pos - sh) * (REACH - 0.005) / d
-        pos[0] = max(pos[0], TCP_MIN_X)
-        return poses.pose(goal.rotation(), pos)
-
-    def _unreachable(self, prim, goal: mink.SE3) -> str:
-        dist = prim.robot.reach_distance(goal.translation())
-        if dist > REACH:
-            return (f"{self.name}: target {np.round(goal.translation(), 2).tolist()} out of reach "
-                    f"({dist:.2f} m from the shoulder > {REACH:.2f} m)")
-        if goal.translation()[0] < TCP_MIN_X - 0.01:
-            return (f"{self.name}: target x {goal.translation()[0]:.2f} m is beyond the hand-over zone "
-                    f"(the hand may reach x >= {TCP_MIN_X:.2f} m)")
-        return ""
-
-    def tick(self, prim, dt, t):
-        goal = self.goal(prim)
-        why = self._unreachable(prim, goal) if self.check_reach else ""
-        if why and self.reach_out:
-            self.waited += dt
-            if self.waited >= REACH_WAIT:
-                return Status.FAILED, why
-            via = poses.interpolate(self.origin, self._within_reach(prim, goal), poses.min_jerk((t - self.t0) / self.duration))
-            prim.robot.move_toward(via, dt)
-            self.reaching = True
-            return Status.RUNNING, ""
-        if self.reaching:   # the goal has come within reach: a move of its own from where the hand is
-            self.reaching, self.origin, self.t0 = False, prim.robot.commanded_tcp_pose(), t
-        t -= self.t0
-        if why:
-            # one misread frame must not end the action: the arm waits where it is, and the move
-            # fails once its target has been out of reach for UNREACHABLE_PATIENCE in all
-            self.unreachable += dt
-            if self.unreachable >= UNREACHABLE_PATIENCE - 1e-9:
-                return Status.FAILED, why
-            prim.robot.hold()
-            return Status.RUNNING, ""
-        via = poses.interpolate(self.origin, goal, poses.min_jerk(t / self.duration))
-        res = prim.robot.move_toward(via, dt)
-        if not res.ok:
-            self.failures += 1
-            if self.failures >= 10:
-                return Status.FAILED, f"{self.name}: {res.reason}"
-        if t >= self.duration:
-            err = float(np.linalg.norm(prim.robot.tcp_pose().translation() - goal.translation()))
-            if err < self.tolerance:
-                return Status.SUCCEEDED, ""
-            if t >= self.timeout:
-                return Status.FAILED, f"{self.name}: did not reach the target (TCP {100 * err:.1f} cm away)"
-        return Status.RUNNING, ""
-
-
-class Grip(Phase):
-    """Close the hand until it holds ``prim.object`` (from contacts), or open it (release)."""
-
-    def __init__(self, close: bool, name: str | None = None, timeout: float = 1.5, settle: float = 0.4) -> None:
-        self.close, self.timeout, self.settle = close, timeout, settle
-        self.name = name or ("close" if close else "open")
-
-    def start(self, prim):
-        g = prim.robot.gripper
-        g.close() if self.close else g.open()
-        if not self.close and prim.carrying:
-            _note_set_down(prim)
-        if not self.close:
-            prim.carrying = False
-        self.since: float | None = None
-
-    def tick(self, prim, dt, t):
-        prim.robot.hold()
-        g = prim.robot.gripper
-        if self.close:
-            if g.grasps():
-                if prim.object == "held_out":
-                    # the hand feels that it holds, not what: what the person was seen holding out
-                    prim.object = prim.identify() or "held_out"
-                self.since = t if self.since is None else self.since
-                if t - self.since >= self.settle:
-                    return Status.SUCCEEDED, ""
-            else:
-                self.since = None
-            if g.fully_closed():
-                return Status.FAILED, f"{self.name}: the hand closed on nothing"
-            if t >= self.timeout:
-                pressing = [part for part, f in g.pressure().items() if f > PRESS_N]
-                return (Status.FAILED,
-                        f"{self.name}: no grasp of {prim.object} after {self.timeout:.1f} s (pressing: {pressing or 'nothing'})")
-            return Status.RUNNING, ""
-        # let go: wait until the fingers are open (the hand then backs off without dragging the object)
-        if t >= self.settle and (float(g.finger_angles().max()) < OPENED or t >= self.timeout):
-            return Status.SUCCEEDED, ""
-        return Status.RUNNING, ""
-
-
-#: finger angle (rad) below which the hand counts as open after a release
-OPENED = 0.1
-
-
-class WaitFor(Phase):
-    """Hold still until ``condition(prim)`` is true."""
-
-    def __init__(self, name: str, condition: Callable[["Primitive"], bool], timeout: float, reason: str) -> None:
-        self.name, self.condition, self.timeout, self.reason = name, condition, timeout, reason
-
-    def tick(self, prim, dt, t):
-        prim.robot.hold()
-        if self.condition(prim):
-            return Status.SUCCEEDED, ""
-        if t >= self.timeout:
-            return Status.FAILED, f"{self.name}: {self.reason} within {self.timeout:.0f} s"
-        return Status.RUNNING, ""
-
-
-class WaitForTake(WaitFor):
-    """Hold the object out until the person takes it: seen holding it (``human_holds()``), or felt.
-
-    Felt: the wrist's force moves PULL_N away from what it was once the held-out hand had come to
-    rest, as the person's grip takes up part of the load.  With the cameras alone the robot
-    often cannot tell: the person's fingers around the object hide it in the robot's hand."""
-
-    PULL_N = 0.8
-    REST_SECONDS = 0.3   # the force at rest is read after this
-    FELT_TICKS = 2       # in a row: one jolt is not a pull
-
-    def __init__(self, name: str, timeout: float, reason: str) -> None:
-        super().__init__(name, lambda p: p.human_holds() or self._felt >= self.FELT_TICKS, timeout, reason)
-
-    def start(self, prim):
-        super().start(prim)
-        self._rest = None
-        self._felt = 0
-
-    def tick(self, prim, dt, t):
-        force = prim.robot.gripper.wrist_force()
-        if self._rest is None:
-            if t >= self.REST_SECONDS:
-                self._rest = force
-        elif np.linalg.norm(force - self._rest) > self.PULL_N:
-            self._felt += 1
-        else:
-            self._felt = 0
-        return super().tick(prim, dt, t)
-
-
-class Rise(Move):
-    """Straight up from where the hand is to ``z`` (world, m), keeping its orientation."""
-
-    def __init__(self, name: str, z: float, duration: float = 1.0) -> None:
-        super().__init__(name, lambda p: self._goal, duration=duration, tolerance=0.08, settle=0.5)
-        self.z = z
-
-    def start(self, prim):
-        super().start(prim)
-        pos = self.origin.translation().copy()
-        pos[2] = max(pos[2], self.z)
-        self._goal = poses.pose(self.origin.rotation(), pos)
-
 
 READY_POSE_POS = np.array([0.30, 0.05, 1.00])
 
@@ -441,6 +235,16 @@ class Primitive:
                 self._held_xy = self.xy().copy()
                 self._lift_frozen = True
 
+    def note_set_down(self) -> None:
+        """Letting go of an object set down on the table: where it stands, as the robot's own body knows it
+        (the axis of a side grasp lies beyond the TCP along the approach), for when its arm hides it."""
+        pose = self.robot.tcp_pose()
+        obj = self.object
+        if obj not in RADIUS or obj == "held_out" or pose.translation()[2] > TABLE_Z + GRASP_HEIGHT[obj] + 0.04:
+            return      # let go of in the air: into the person's hand
+        c = pose.translation() + poses.approach_axis(pose.rotation()) * (RADIUS[obj] - TCP_CYLINDER_RADIUS)
+        self.released = (obj, (float(c[0]), float(c[1])))
+
 
 # ---------------------------------------------------------------------------
 # geometry of the objects (body origin at the bottom centre)
@@ -540,7 +344,7 @@ def _reach_and_grasp(prim: Primitive, height: float | None = None, held_up: bool
     """Reach and grasp the target from the side: standing on the table, or ``held_up`` by the person (the
     hand then reaches out for it as far as it can, and waits for it there: `Move.reach_out`)."""
     return [
-        _Open("open"),
+        Open("open"),
         Rise("rise", 1.0),
         Move("ready", lambda p: poses.pose(mink.SO3.identity(), READY_POSE_POS), duration=1.2, tolerance=0.04),
         Move("above pre-grasp", lambda p: _side_grasp_pose(p, back=0.16, up=0.10, height=height, held_up=held_up), duration=1.5,
@@ -551,115 +355,6 @@ def _reach_and_grasp(prim: Primitive, height: float | None = None, held_up: bool
              reach_out=held_up),
         Grip(True, "grasp"),
     ]
-
-
-def _note_set_down(prim: "Primitive") -> None:
-    """Letting go of an object set down on the table: where it stands, as the robot's own body knows it
-    (the axis of a side grasp lies beyond the TCP along the approach), for when its arm hides it."""
-    pose = prim.robot.tcp_pose()
-    obj = prim.object
-    if obj not in RADIUS or obj == "held_out" or pose.translation()[2] > TABLE_Z + GRASP_HEIGHT[obj] + 0.04:
-        return      # let go of in the air: into the person's hand
-    c = pose.translation() + poses.approach_axis(pose.rotation()) * (RADIUS[obj] - TCP_CYLINDER_RADIUS)
-    prim.released = (obj, (float(c[0]), float(c[1])))
-
-
-class _Open(Grip):
-    def __init__(self, name="open"):
-        super().__init__(False, name, settle=0.2)
-
-
-class _Carry(Phase):
-    """Marks the end of carrying (after a release) without moving."""
-
-    def __init__(self, carrying: bool) -> None:
-        self.carrying, self.name = carrying, "release done"
-
-    def tick(self, prim, dt, t):
-        prim.carrying = self.carrying
-        prim.robot.hold()
-        return Status.SUCCEEDED, ""
-
-
-class Relative(Move):
-    """Minimum-jerk move by ``offset`` (world, m) from the commanded pose at the phase's start, same orientation."""
-
-    def __init__(self, name: str, offset, duration: float = 1.0, tolerance: float = 0.03) -> None:
-        super().__init__(name, lambda p: self._goal, duration=duration, tolerance=tolerance)
-        self.offset = np.asarray(offset, float)
-
-    def start(self, prim):
-        super().start(prim)
-        self._goal = poses.pose(self.origin.rotation(), self.origin.translation() + self.offset)
-
-
-class BackOff(Relative):
-    """Withdraw the open hand along its approach axis (back toward the robot) and up a little."""
-
-    def __init__(self, name: str = "back off", distance: float = 0.14, up: float = 0.03, duration: float = 1.0) -> None:
-        super().__init__(name, np.zeros(3), duration=duration, tolerance=0.04)
-        self.distance, self.up = distance, up
-
-    def start(self, prim):
-        Move.start(self, prim)
-        ax = poses.approach_axis(self.origin.rotation())
-        ax[2] = 0.0
-        ax /= max(np.linalg.norm(ax), 1e-9)
-        self._goal = poses.pose(self.origin.rotation(), self.origin.translation() - self.distance * ax + [0, 0, self.up])
-
-
-class Roll(Phase):
-    """Roll the hand about its approach axis by ``angle`` (rad), minimum jerk, the TCP staying in place."""
-
-    def __init__(self, name: str, angle: float, duration: float = 1.5, settle: float = 1.5) -> None:
-        self.name, self.angle, self.duration = name, angle, duration
-        self.timeout = duration + settle
-
-    def start(self, prim):
-        self.origin = prim.robot.commanded_tcp_pose()
-        self.failures = 0
-
-    def _pose(self, s: float) -> mink.SE3:
-        return poses.pose(self.origin.rotation() @ mink.SO3.from_x_radians(s * self.angle), self.origin.translation())
-
-    def tick(self, prim, dt, t):
-        res = prim.robot.move_toward(self._pose(poses.min_jerk(t / self.duration)), dt)
-        if not res.ok:
-            self.failures += 1
-            if self.failures >= 10:
-                return Status.FAILED, f"{self.name}: {res.reason}"
-        if t >= self.duration:
-            goal = self._pose(1.0)
-            now = prim.robot.tcp_pose()
-            rot_err = float(np.linalg.norm((goal.rotation().inverse() @ now.rotation()).log()))
-            pos_err = float(np.linalg.norm(now.translation() - goal.translation()))
-            if rot_err < 0.12 and pos_err < 0.03:
-                return Status.SUCCEEDED, ""
-            if t >= self.timeout:
-                return Status.FAILED, f"{self.name}: the wrist did not turn ({np.degrees(rot_err):.0f} deg, {100 * pos_err:.1f} cm off)"
-        return Status.RUNNING, ""
-
-
-class Wait(Phase):
-    """Hold still for ``seconds`` (liquid settling, a fixed pour time)."""
-
-    def __init__(self, name: str, seconds: float) -> None:
-        self.name, self.seconds, self.timeout = name, seconds, seconds + 1.0
-
-    def tick(self, prim, dt, t):
-        prim.robot.hold()
-        return (Status.SUCCEEDED, "") if t >= self.seconds else (Status.RUNNING, "")
-
-
-class _FreezeXY(Phase):
-    """Remember where the object stood (for putting it back) before it is lifted."""
-
-    name = "remember place"
-
-    def tick(self, prim, dt, t):
-        prim.home_xy = prim.xy().copy()
-        prim.robot.hold()
-        return Status.SUCCEEDED, ""
 
 
 def free_rws_spot(p: "Primitive") -> np.ndarray:
@@ -690,7 +385,7 @@ def _put_down_at(xy_of: Callable[[Primitive], np.ndarray], lift: float = LIFT) -
         # down to just above where the object would touch if held as assumed; the rest by feel
         Move("put down", lambda p: at(p, SET_DOWN_ABOVE), duration=1.2, tolerance=0.025),
         LowerUntilSupported(),
-        _Open("release"), _Carry(False),
+        Open("release"), SetCarrying(False),
         BackOff(),
     ]
 
@@ -699,7 +394,7 @@ def _waiting_for_the_person_to_let_go(timeout: float) -> WaitFor:
     """Both hold the object: wait until the person lets go. Not let go in time, it stays theirs: the hand
     opens and withdraws (no tug of war)."""
     wait = WaitFor("wait for the human to let go", lambda p: not p.human_holds(), timeout, "the human did not let go")
-    wait.fallback = lambda p: [_Open("leave it to the person"), _Carry(False), BackOff(), *_retract()]
+    wait.fallback = lambda p: [Open("leave it to the person"), SetCarrying(False), BackOff(), *_retract()]
     return wait
 
 
@@ -707,62 +402,6 @@ def _set_down_what_is_carried(p: Primitive) -> list[Phase]:
     """A failed action's safe end while the hand holds something: put it down at a free spot in the RWS
     and withdraw."""
     return _put_down_at(free_rws_spot) + _retract()
-
-
-class LowerUntilSupported(Phase):
-    """Lower the held object until the table is felt to carry it: the wrist force moves SUPPORT_N away from
-    what it was once the hand had come to rest (the object's weight leaves the hand), or the hand can go no
-    lower (the arm keeps the hand off the table): the grip is then eased so that the object slides down
-    between the fingers onto the table. Where the object was grasped lower or higher than assumed (a
-    held-out object placed a few cm off by vision), the put-down still ends with it standing on the table."""
-
-    name = "lower until supported"
-    SUPPORT_N = 0.8
-    REST_SECONDS = 0.3    # held still first: the force at rest is read after the last move's jolt
-    FORCE_TAU = 0.1       # s: the force is low-passed, the arm's own servo jitter (~0.7 N) is not the table
-    FELT_TICKS = 3        # in a row
-    SPEED = 0.03          # m/s
-    MAX_DROP = 0.07       # m below where the put-down ended
-    STALL_SECONDS = 0.3   # no progress this long: the hand is as low as it goes
-    LOOSEN = 0.35         # how far the grip opens to let the object slide down (fraction of fully open)
-    SLIDE_SECONDS = 0.8
-
-    def start(self, prim):
-        self.origin = prim.robot.commanded_tcp_pose()
-        self.f0: np.ndarray | None = None
-        self.force = prim.robot.gripper.wrist_force()
-        self.felt = 0
-        self.best_z, self.since = float(prim.robot.tcp_pose().translation()[2]), self.REST_SECONDS
-        self.loosened: float | None = None
-        self.timeout = self.REST_SECONDS + self.MAX_DROP / self.SPEED + 1.0 + self.SLIDE_SECONDS
-
-    def tick(self, prim, dt, t):
-        self.force += (prim.robot.gripper.wrist_force() - self.force) * min(1.0, dt / self.FORCE_TAU)
-        if t < self.REST_SECONDS:
-            prim.robot.hold()
-            return Status.RUNNING, ""
-        if self.f0 is None:
-            self.f0 = self.force.copy()
-        self.felt = self.felt + 1 if np.linalg.norm(self.force - self.f0) > self.SUPPORT_N else 0
-        if self.felt >= self.FELT_TICKS:
-            prim.robot.hold()
-            return Status.SUCCEEDED, ""
-        z = float(prim.robot.tcp_pose().translation()[2])
-        if z < self.best_z - 0.002:
-            self.best_z, self.since = z, t
-        if self.loosened is not None:
-            # the grip eased: the object slides down between the fingers onto the table
-            prim.robot.hold()
-            return (Status.SUCCEEDED, "") if t - self.loosened >= self.SLIDE_SECONDS else (Status.RUNNING, "")
-        if t - self.since > self.STALL_SECONDS or t >= self.timeout:
-            # as low as the hand goes and not yet on the table (grasped lower than assumed): ease the grip
-            # rather than drop it from there
-            prim.robot.gripper.open(self.LOOSEN)
-            self.loosened = t
-            return Status.RUNNING, ""
-        pos = self.origin.translation() - [0.0, 0.0, min(self.MAX_DROP, self.SPEED * (t - self.REST_SECONDS))]
-        prim.robot.move_toward(poses.pose(self.origin.rotation(), pos), dt)
-        return Status.RUNNING, ""
 
 
 def offer_point(prim: "Primitive") -> np.ndarray:
@@ -877,7 +516,7 @@ def _give(timeout: float) -> list[Phase]:
     return [
         wait,
         Wait("feel the pull", 0.3),
-        _Open("let go"), _Carry(False),
+        Open("let go"), SetCarrying(False),
         BackOff("back off", distance=0.16, up=0.0, duration=1.2),
         *_retract(),
     ]
@@ -921,8 +560,8 @@ class TurnGlass(Primitive):
     def phases(self):
         return _reach_and_grasp(self) + _turn_phases() + [
             Move("lower", lambda p: _side_grasp_pose(p, up=0.008, roll=math.pi), duration=1.2),
-            _Open("release"),
-            _Carry(False),
+            Open("release"),
+            SetCarrying(False),
             Move("back off", lambda p: _side_grasp_pose(p, back=0.16, up=0.03, roll=math.pi), duration=1.0, tolerance=0.04),
             *_retract(),
         ]
@@ -995,7 +634,7 @@ class Request(Primitive):
         # hand, which hangs below its TCP, passes over a bottle with its stopper; a gesture: shown,
         # then withdrawn, so that it does not hide from the robot's own cameras the object the
         # person now holds out toward it
-        return [_Open("open"), Rise("rise", TABLE_Z + self.OVER_HEIGHT),
+        return [Open("open"), Rise("rise", TABLE_Z + self.OVER_HEIGHT),
                 Move("over", lambda p: goal(p, self.OVER_HEIGHT), duration=1.5, tolerance=0.04),
                 Move("hold out open hand", goal, duration=1.0, tolerance=0.03),
                 Wait("show the open hand", self.SHOW_SECONDS), *_retract(over_at=TABLE_Z + self.OVER_HEIGHT)]
@@ -1050,7 +689,7 @@ class HoldBottleForStopper(Primitive):
         if self.xy()[0] < 0.0 and not self.human_holds():
             # standing on the person's side, put down there for the robot: from the table, back to the RWS
             return _reach_and_grasp(self) + [
-                _FreezeXY(),
+                RememberPlace(),
                 Move("lift", lambda p: _side_grasp_pose(p, up=LIFT), duration=1.2),
                 *hold,
                 *_put_down_at(lambda p: p._home()),
@@ -1065,7 +704,7 @@ class HoldBottleForStopper(Primitive):
                 *_retract(),
             ]
         return _reach_and_grasp(self) + [
-            _FreezeXY(),
+            RememberPlace(),
             Move("lift", lambda p: _side_grasp_pose(p, up=LIFT), duration=1.2),
             *_hold_out(self.HOLD_BASE, self.HOLD_XY),
             WaitFor("hold steady for the stopper", lambda p: p.stopper_removed(), self.timeout,
@@ -1123,7 +762,7 @@ class Pour(Primitive):
 
     def phases(self):
         return _reach_and_grasp(self) + [
-            _FreezeXY(),
+            RememberPlace(),
             Move("lift", lambda p: _side_grasp_pose(p, up=LIFT), duration=1.2),
             Move("over the glass", lambda p: p._pour_pose(0.0), duration=1.8),
             Roll("tilt", self.TILT, duration=1.5),
@@ -1259,7 +898,7 @@ class TakeFromTable(Primitive):
         def grasp_at(p, back=0.0, up=0.0):
             return _side_grasp_pose(p, back=back, up=up)
         return [
-            _Open("open"), Rise("rise", 1.0),
+            Open("open"), Rise("rise", 1.0),
             Move("ready", lambda p: poses.pose(mink.SO3.identity(), READY_POSE_POS), duration=1.2, tolerance=0.04),
             Move("show the spot", show, duration=1.8, tolerance=0.04),
             WaitFor("wait for it to be set down", lambda p: p._placed(), self.timeout, "nothing was set down"),

@@ -1,0 +1,42 @@
+"""Roll: turning the hand about its approach axis in place (the glass turned upright, the bottle tilted to pour)."""
+
+from __future__ import annotations
+
+import mink
+import numpy as np
+
+from assistbot.robot import poses
+from assistbot.robot.phases.base import Phase
+from assistbot.robot.progress import Status
+
+
+class Roll(Phase):
+    """Roll the hand about its approach axis by ``angle`` (rad), minimum jerk, the TCP staying in place."""
+
+    def __init__(self, name: str, angle: float, duration: float = 1.5, settle: float = 1.5) -> None:
+        self.name, self.angle, self.duration = name, angle, duration
+        self.timeout = duration + settle
+
+    def start(self, prim):
+        self.origin = prim.robot.commanded_tcp_pose()
+        self.failures = 0
+
+    def _pose(self, s: float) -> mink.SE3:
+        return poses.pose(self.origin.rotation() @ mink.SO3.from_x_radians(s * self.angle), self.origin.translation())
+
+    def tick(self, prim, dt, t):
+        res = prim.robot.move_toward(self._pose(poses.min_jerk(t / self.duration)), dt)
+        if not res.ok:
+            self.failures += 1
+            if self.failures >= 10:
+                return Status.FAILED, f"{self.name}: {res.reason}"
+        if t >= self.duration:
+            goal = self._pose(1.0)
+            now = prim.robot.tcp_pose()
+            rot_err = float(np.linalg.norm((goal.rotation().inverse() @ now.rotation()).log()))
+            pos_err = float(np.linalg.norm(now.translation() - goal.translation()))
+            if rot_err < 0.12 and pos_err < 0.03:
+                return Status.SUCCEEDED, ""
+            if t >= self.timeout:
+                return Status.FAILED, f"{self.name}: the wrist did not turn ({np.degrees(rot_err):.0f} deg, {100 * pos_err:.1f} cm off)"
+        return Status.RUNNING, ""
