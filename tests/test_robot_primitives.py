@@ -273,8 +273,8 @@ class _GraspThenReachTooFar(P.Primitive):
         from assistbot.robot import poses
 
         far = poses.pose(mink.SO3.identity(), np.array([-0.45, -0.35, 0.95]))
-        return P._reach_and_grasp(self) + [
-            P.Move("lift", lambda p: P._side_grasp_pose(p, up=P.LIFT), duration=1.2),
+        return P.reach_and_grasp_phases(self) + [
+            P.Move("lift", lambda p: P.side_grasp_pose(p, up=P.LIFT), duration=1.2),
             P.Move("too far", lambda p: far, duration=1.5),
         ]
 

@@ -15,6 +15,7 @@ from assistbot.robot.progress import Status
 if TYPE_CHECKING:
     from assistbot.robot.primitives import Primitive
 
+
 UNREACHABLE_PATIENCE = 0.3  # s in all that a Move's target may be out of reach before the move fails (3 perception ticks)
 REACH_WAIT = 12.0           # s a reaching-out move waits for its goal to come within reach
 
