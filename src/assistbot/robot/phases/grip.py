@@ -6,6 +6,8 @@ from assistbot.robot.gripper import PRESS_N
 from assistbot.robot.phases.base import Phase
 from assistbot.robot.progress import Status
 
+#: finger angle (rad) below which the hand counts as open after a release
+OPENED = 0.1
 
 class Grip(Phase):
     """Close the hand until it holds ``prim.object`` (from contacts), or open it (release)."""
@@ -47,10 +49,6 @@ class Grip(Phase):
         if t >= self.settle and (float(g.finger_angles().max()) < OPENED or t >= self.timeout):
             return Status.SUCCEEDED, ""
         return Status.RUNNING, ""
-
-
-#: finger angle (rad) below which the hand counts as open after a release
-OPENED = 0.1
 
 
 class Open(Grip):

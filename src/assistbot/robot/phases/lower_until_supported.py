@@ -26,6 +26,8 @@ class LowerUntilSupported(Phase):
     STALL_SECONDS = 0.3   # no progress this long: the hand is as low as it goes
     LOOSEN = 0.35         # how far the grip opens to let the object slide down (fraction of fully open)
     SLIDE_SECONDS = 0.8
+    PROGRESS_M = 0.002    # the hand is still going down while it gets this much lower than it has been
+    TIMEOUT_MARGIN_S = 1.0  # beyond the time the whole drop and the slide take
 
     def start(self, prim):
         self.origin = prim.robot.commanded_tcp_pose()
@@ -34,7 +36,7 @@ class LowerUntilSupported(Phase):
         self.felt = 0
         self.best_z, self.since = float(prim.robot.tcp_pose().translation()[2]), self.REST_SECONDS
         self.loosened: float | None = None
-        self.timeout = self.REST_SECONDS + self.MAX_DROP / self.SPEED + 1.0 + self.SLIDE_SECONDS
+        self.timeout = self.REST_SECONDS + self.MAX_DROP / self.SPEED + self.TIMEOUT_MARGIN_S + self.SLIDE_SECONDS
 
     def tick(self, prim, dt, t):
         self.force += (prim.robot.gripper.wrist_force() - self.force) * min(1.0, dt / self.FORCE_TAU)
@@ -48,7 +50,7 @@ class LowerUntilSupported(Phase):
             prim.robot.hold()
             return Status.SUCCEEDED, ""
         z = float(prim.robot.tcp_pose().translation()[2])
-        if z < self.best_z - 0.002:
+        if z < self.best_z - self.PROGRESS_M:
             self.best_z, self.since = z, t
         if self.loosened is not None:
             # the grip eased: the object slides down between the fingers onto the table

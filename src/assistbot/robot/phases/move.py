@@ -18,6 +18,12 @@ if TYPE_CHECKING:
 
 UNREACHABLE_PATIENCE = 0.3  # s in all that a Move's target may be out of reach before the move fails (3 perception ticks)
 REACH_WAIT = 12.0           # s a reaching-out move waits for its goal to come within reach
+#: control ticks (in all) on which the IK may find no step toward the goal before a move of the arm fails
+MAX_FAILED_TICKS = 10
+#: m short of REACH that a hand reaching out toward an unreachable goal stops
+REACH_OUT_MARGIN = 0.005
+#: m beyond TCP_MIN_X (into the HWS) a goal may lie and still count as within the hand-over zone
+HANDOVER_X_SLACK = 0.01
 
 
 class Move(Phase):
@@ -49,8 +55,8 @@ class Move(Phase):
         pos = goal.translation().copy()
         sh = prim.robot.shoulder
         d = float(np.linalg.norm(pos - sh))
-        if d > REACH - 0.005:
-            pos = sh + (pos - sh) * (REACH - 0.005) / d
+        if d > REACH - REACH_OUT_MARGIN:
+            pos = sh + (pos - sh) * (REACH - REACH_OUT_MARGIN) / d
         pos[0] = max(pos[0], TCP_MIN_X)
         return poses.pose(goal.rotation(), pos)
 
@@ -59,7 +65,7 @@ class Move(Phase):
         if dist > REACH:
             return (f"{self.name}: target {np.round(goal.translation(), 2).tolist()} out of reach "
                     f"({dist:.2f} m from the shoulder > {REACH:.2f} m)")
-        if goal.translation()[0] < TCP_MIN_X - 0.01:
+        if goal.translation()[0] < TCP_MIN_X - HANDOVER_X_SLACK:
             return (f"{self.name}: target x {goal.translation()[0]:.2f} m is beyond the hand-over zone "
                     f"(the hand may reach x >= {TCP_MIN_X:.2f} m)")
         return ""
@@ -90,7 +96,7 @@ class Move(Phase):
         res = prim.robot.move_toward(via, dt)
         if not res.ok:
             self.failures += 1
-            if self.failures >= 10:
+            if self.failures >= MAX_FAILED_TICKS:
                 return Status.FAILED, f"{self.name}: {res.reason}"
         if t >= self.duration:
             err = float(np.linalg.norm(prim.robot.tcp_pose().translation() - goal.translation()))

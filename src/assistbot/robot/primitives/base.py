@@ -26,6 +26,14 @@ from assistbot.world.layout import TABLE_Z
 LIFT_GUESS = 0.10
 #: time constant (s) over which the perceived height of a held-up object is followed
 LIFT_TAU = 0.2
+#: m above its grasp height on the table beyond which an object let go of is in the air (given to the person), not set down
+IN_THE_AIR_ABOVE = 0.04
+#: m above the table that the head looks at a target on it
+LOOK_ABOVE_TABLE = 0.05
+#: table x, y a primitive started without a perceived target aims at until it sees one
+DEFAULT_TARGET_XY = (0.25, 0.0)
+#: s the target field is given to form its peak on the first perception
+PEAK_FORMING_SECONDS = 0.3
 
 
 class Primitive:
@@ -116,16 +124,16 @@ class Primitive:
             self.robot.look_at(self.robot.tcp_pose().translation())
         else:
             x, y = self.xy()
-            self.robot.look_at(np.array([x, y, TABLE_Z + 0.05]))
+            self.robot.look_at(np.array([x, y, TABLE_Z + LOOK_ABOVE_TABLE]))
 
     # --- running -------------------------------------------------------
     def start(self, target_xy=None) -> None:
-        self._xy0 = target_xy if target_xy is not None else (0.25, 0.0)
+        self._xy0 = target_xy if target_xy is not None else DEFAULT_TARGET_XY
         self.field.reset()
         if target_xy is not None:
             # let the field form its peak on the first perception
             self.field.observe(target_xy)
-            self.field.advance(0.3)
+            self.field.advance(PEAK_FORMING_SECONDS)
         self._peak = None
         self._lift, self._lift_frozen = None, False
         self._see_lift(1.0)
@@ -200,7 +208,7 @@ class Primitive:
         (the axis of a side grasp lies beyond the TCP along the approach), for when its arm hides it."""
         pose = self.robot.tcp_pose()
         obj = self.object
-        if obj not in RADIUS or obj == "held_out" or pose.translation()[2] > TABLE_Z + GRASP_HEIGHT[obj] + 0.04:
+        if obj not in RADIUS or obj == "held_out" or pose.translation()[2] > TABLE_Z + GRASP_HEIGHT[obj] + IN_THE_AIR_ABOVE:
             return      # let go of in the air: into the person's hand
         c = pose.translation() + poses.approach_axis(pose.rotation()) * (RADIUS[obj] - TCP_CYLINDER_RADIUS)
         self.released = (obj, (float(c[0]), float(c[1])))

@@ -21,6 +21,8 @@ if TYPE_CHECKING:
 
 #: m by which what the robot carries passes over the objects standing in its way
 CARRY_CLEARANCE = 0.03
+#: m: a straight way that passes within this below the height needed is high enough
+HIGH_ENOUGH_WITHIN = 0.005
 
 
 class CarryOver(Phase):
@@ -52,7 +54,7 @@ class CarryOver(Phase):
             if d < RADIUS[obj] + RADIUS[other] + CARRY_CLEARANCE:
                 top = TABLE_Z + OBJECT_HEIGHT[other] + (STOPPER_HEIGHT if other == "bottle" else 0.0)
                 need = max(need, top + CARRY_CLEARANCE + below)
-        if need <= max(a[2], b[2]) - 0.005:
+        if need <= max(a[2], b[2]) - HIGH_ENOUGH_WITHIN:
             return
         rot = here.rotation()
         self.moves = [Move("carry over: rise", lambda p, q=np.array([a[0], a[1], need]): poses.pose(rot, q), duration=1.0,

@@ -25,6 +25,12 @@ GRASP_HEIGHT = {"glass": 0.05, "bottle": 0.08, "held_out": 0.06}
 RADIUS = {**{o: OBJECT_RADIUS[o] for o in ("glass", "bottle")}, "held_out": (OBJECT_RADIUS["glass"] + OBJECT_RADIUS["bottle"]) / 2}
 #: how far (m) beyond REACH a grasp point may lie and still be grasped, short of the hand's middle
 REACH_SLACK = 0.025
+#: such a grasp stops this far (m) inside REACH, backing along the approach, which counts as no more
+#: oblique to the line from the shoulder than MIN_APPROACH_COS (the cosine between them)
+INSIDE_REACH = 0.003
+MIN_APPROACH_COS = 0.3
+#: m back along the approach from the grasp pose at which the open hand stops before closing in
+PRE_GRASP_BACK = 0.16
 TCP_CYLINDER_RADIUS = 0.035  # the TCP is the centre of a 70 mm cylinder touching the palm
 #: how high (m) the hand lifts an object off the table to carry it
 LIFT = 0.12
@@ -53,7 +59,7 @@ def grasp_pose_at(prim: Primitive, centre: np.ndarray, obj: str, back: float = 0
     if REACH < dist <= REACH + REACH_SLACK:
         # just beyond the arm's reach (an object held out at the person's own limit): stop short along the
         # approach; the object then sits nearer the fingertips of the open hand (94 mm), which still close on it
-        pos = pos - ax * (dist - REACH + 0.003) / max(0.3, float(ax @ to) / dist)
+        pos = pos - ax * (dist - REACH + INSIDE_REACH) / max(MIN_APPROACH_COS, float(ax @ to) / dist)
     return poses.pose(rot @ mink.SO3.from_x_radians(roll), pos)
 
 

@@ -25,6 +25,9 @@ HOLD_OUT_BASE = 0.11
 #: how low and how high an offered object's base is held above the table (m), whatever the hand it is
 #: offered to: a hand shown higher takes it from the side no higher than a seated arm reaches well
 OFFER_BASE = (0.05, 0.12)
+#: m within REACH, and on the robot's side of TCP_MIN_X, that an offered object's centre is kept
+OFFER_REACH_MARGIN = 0.03
+OFFER_X_MARGIN = 0.01
 
 
 def offer_point(prim: "Primitive") -> np.ndarray:
@@ -41,8 +44,8 @@ def offer_point(prim: "Primitive") -> np.ndarray:
             base = float(np.clip(float(hand[2]) - 0.5 * OBJECT_HEIGHT[obj], *OFFER_BASE))
             c = np.array([float(hand[0]), float(hand[1]), TABLE_Z + base + GRASP_HEIGHT[obj]])
         # out of reach: brought back toward the robot at the same height (a hand takes it where it was shown)
-        sh, reach = prim.robot.shoulder, REACH - 0.03
-        c[0] = max(c[0], TCP_MIN_X + 0.01)
+        sh, reach = prim.robot.shoulder, REACH - OFFER_REACH_MARGIN
+        c[0] = max(c[0], TCP_MIN_X + OFFER_X_MARGIN)
         flat = reach ** 2 - (c[2] - sh[2]) ** 2
         off = c[:2] - sh[:2]
         if float(np.linalg.norm(c - sh)) > reach and flat > 0:

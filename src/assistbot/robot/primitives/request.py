@@ -41,6 +41,8 @@ class Request(Primitive):
     #: an object standing in the RWS closer than this (m, seen from above) to the line from the
     #: shoulder to the hand would meet the forearm, which comes up from below to a palm-up hand
     CLEAR = 0.11
+    #: the hand's y positions tried across Y_RANGE for one that clears them (1 cm apart)
+    Y_CANDIDATES = 43
 
     def _y(self) -> float:
         """The hand's y: toward the target's side, moved to where the arm clears the objects seen standing in the RWS.
@@ -56,7 +58,7 @@ class Request(Primitive):
 
         if clear(y):
             return y
-        free = [c for c in np.linspace(*self.Y_RANGE, 43) if clear(c)]
+        free = [c for c in np.linspace(*self.Y_RANGE, self.Y_CANDIDATES) if clear(c)]
         return float(min(free, key=lambda c: abs(c - y))) if free else y
 
     def phases(self):

@@ -9,7 +9,7 @@ from assistbot.robot import poses
 from assistbot.robot.phases import Grip, Move, Open, Rise, WaitFor
 from assistbot.robot.placement import shared_spot
 from assistbot.robot.primitives.base import Primitive
-from assistbot.robot.primitives.geometry import GRASP_HEIGHT, LIFT, grasp_pose_at, side_grasp_pose
+from assistbot.robot.primitives.geometry import GRASP_HEIGHT, LIFT, PRE_GRASP_BACK, grasp_pose_at, side_grasp_pose
 from assistbot.robot.primitives.places import HOLD_OUT_XY, SHARED_REACH, free_rws_spot
 from assistbot.robot.primitives.putting_down import put_down_at
 from assistbot.robot.primitives.reaching import READY_POSE_POS, retract_phases
@@ -29,6 +29,9 @@ class TakeFromTable(Primitive):
     SHOW_HEIGHT = 0.30
     #: an object seen standing this close (m) to the spot has been set down there
     PLACED_NEAR = 0.09
+    #: the spot keeps clear of the objects seen standing at table x (m) beyond this: the RWS and the
+    #: person's side near the middle line
+    CLEAR_OF_X = -0.2
 
     def __init__(self, robot, obj=None, timeout: float = 25.0, **kw):
         super().__init__(robot, obj, **kw)
@@ -37,7 +40,7 @@ class TakeFromTable(Primitive):
         self._home_xy: np.ndarray | None = None
 
     def start(self, target_xy=None) -> None:
-        standing = [xy for xy in (self.locate(n) for n in OBJECTS) if xy is not None and xy[0] > -0.2]
+        standing = [xy for xy in (self.locate(n) for n in OBJECTS) if xy is not None and xy[0] > self.CLEAR_OF_X]
         self.spot = shared_spot(self.robot.shoulder, SHARED_REACH, HOLD_OUT_XY, standing, min(GRASP_HEIGHT[o] for o in OBJECTS))
         super().start(tuple(self.spot))
 
@@ -62,12 +65,12 @@ class TakeFromTable(Primitive):
         def grasp_at(p, back=0.0, up=0.0):
             return side_grasp_pose(p, back=back, up=up)
         return [
-            Open("open"), Rise("rise", 1.0),
+            Open("open"), Rise("rise", READY_POSE_POS[2]),
             Move("ready", lambda p: poses.pose(mink.SO3.identity(), READY_POSE_POS), duration=1.2, tolerance=0.04),
             Move("show the spot", show, duration=1.8, tolerance=0.04),
             WaitFor("wait for it to be set down", lambda p: p._placed(), self.timeout, "nothing was set down"),
-            Move("back from above", lambda p: show(p, back=0.16), duration=1.0, tolerance=0.04),
-            Move("pre-grasp", lambda p: grasp_at(p, back=0.16), duration=1.2),
+            Move("back from above", lambda p: show(p, back=PRE_GRASP_BACK), duration=1.0, tolerance=0.04),
+            Move("pre-grasp", lambda p: grasp_at(p, back=PRE_GRASP_BACK), duration=1.2),
             Move("approach", lambda p: grasp_at(p), duration=1.0, tolerance=0.025),
             Grip(True, "grasp"),
             Move("lift", lambda p: side_grasp_pose(p, up=LIFT), duration=1.2),

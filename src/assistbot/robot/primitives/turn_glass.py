@@ -6,7 +6,7 @@ import math
 
 from assistbot.robot.phases import Move, Open, Phase, SetCarrying
 from assistbot.robot.primitives.base import Primitive
-from assistbot.robot.primitives.geometry import LIFT, side_grasp_pose
+from assistbot.robot.primitives.geometry import LIFT, PRE_GRASP_BACK, side_grasp_pose
 from assistbot.robot.primitives.reaching import reach_and_grasp_phases, retract_phases
 
 
@@ -32,6 +32,6 @@ class TurnGlass(Primitive):
             Move("lower", lambda p: side_grasp_pose(p, up=0.008, roll=math.pi), duration=1.2),
             Open("release"),
             SetCarrying(False),
-            Move("back off", lambda p: side_grasp_pose(p, back=0.16, up=0.03, roll=math.pi), duration=1.0, tolerance=0.04),
+            Move("back off", lambda p: side_grasp_pose(p, back=PRE_GRASP_BACK, up=0.03, roll=math.pi), duration=1.0, tolerance=0.04),
             *retract_phases(),
         ]
