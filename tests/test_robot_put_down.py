@@ -27,9 +27,9 @@ class _PlaceGraspedLow(P.PlaceInRWS):
         self.below = below
 
     def phases(self):
-        return (P._reach_and_grasp(self, height=P.GRASP_HEIGHT[self.object] - self.below)
-                + [P.Move("lift", lambda p: P._side_grasp_pose(p, up=P.LIFT), duration=1.2)]
-                + P._put_down_at(lambda p: p.spot) + P._retract())
+        return (P.reach_and_grasp_phases(self, height=P.GRASP_HEIGHT[self.object] - self.below)
+                + [P.Move("lift", lambda p: P.side_grasp_pose(p, up=P.LIFT), duration=1.2)]
+                + P.put_down_at(lambda p: p.spot) + P.retract_phases())
 
 
 def _base_z(w, obj) -> float:

@@ -1,7 +1,9 @@
 """AEL robot actions (assistbot.task.drinking.ROBOT_ACTIONS) -> motion primitives.
 
-``None`` means the action does not move the arm (speech, waiting). Every action
-that moves maps to a primitive that physically achieves it (tests/test_robot_primitives.py).
+Each action names its motion (`RobotAction.motion`, in the task); `MOTIONS` maps a motion to the
+primitive that physically achieves it and the object that primitive acts on. An action that does
+not move the arm (its motion "speak" or "none") has no primitive. Adding an action that moves means
+a `RobotAction` with a motion that is a key here (a new key when no primitive does it yet).
 Composite actions are one primitive whose phases chain the parts:
 
   Grasp-hold-bottle-to-remove-cup     HoldBottleForStopper: grasp, hold out at the middle line,
@@ -34,23 +36,22 @@ holds whatever it holds out (the robot waits for it to let go).
 from __future__ import annotations
 
 from assistbot.robot import primitives as P
+from assistbot.task import ROBOT_ACTIONS
 
-#: action name -> (primitive class, object it acts on)
-ACTION_PRIMITIVES: dict[str, tuple[type[P.Primitive], str | None] | None] = {
-    "Communicate-Error": None,
-    "Suggest-drink": None,
-    "Wait": None,
-    "Reach-and-turn-glass": (P.TurnGlass, "glass"),
-    "Request-glass": (P.Request, "glass"),
-    "Request-bottle": (P.Request, "bottle"),
-    "Grasp-hold-bottle-to-remove-cup": (P.HoldBottleForStopper, "bottle"),
-    "Reach-turn-and-hand-over-glass": (P.TurnAndHandOver, "glass"),
-    "Reach-grasp-open-bottle-fill-glass": (P.Pour, "bottle"),
-    "Reach-full-glass-to-hand-over": (P.HandOver, "glass"),
-    "Hand-over-bottle": (P.HandOver, "bottle"),
-    "Receive-object": (P.Receive, "held_out"),
-    "Take-from-table": (P.TakeFromTable, None),
+#: motion (`RobotAction.motion`) -> (the primitive that performs it, the object it acts on)
+MOTIONS: dict[str, tuple[type[P.Primitive], str | None]] = {
+    "turn_glass": (P.TurnGlass, "glass"),
+    "request_glass": (P.Request, "glass"),
+    "request_bottle": (P.Request, "bottle"),
+    "grasp_hold_bottle": (P.HoldBottleForStopper, "bottle"),
+    "turn_and_hand_over_glass": (P.TurnAndHandOver, "glass"),
+    "fill_glass": (P.Pour, "bottle"),
+    "hand_over_glass": (P.HandOver, "glass"),
+    "hand_over_bottle": (P.HandOver, "bottle"),
+    "receive_object": (P.Receive, "held_out"),
+    "take_from_table": (P.TakeFromTable, None),
 }
 
-#: actions whose primitive does not achieve the action physically yet (action -> reason): none left.
-NOT_YET_PHYSICAL: dict[str, str] = {}
+#: action name -> (primitive class, object it acts on), or None for an action that does not move the arm
+ACTION_PRIMITIVES: dict[str, tuple[type[P.Primitive], str | None] | None] = {
+    a.name: MOTIONS[a.motion] if a.moves else None for a in ROBOT_ACTIONS}

@@ -242,8 +242,9 @@ class RobotAction:
     """A complementary action of the robot.
 
     ``target``: the object it acts on ("bottle", "glass"), "held_out" (whatever
-    the human holds out) or None. ``motion``: the motion primitive the robot
-    module runs ("speak" = speech only, "none" = nothing).
+    the human holds out) or None. ``motion``: what the robot module does for it: a
+    motion (`assistbot.robot.actions.MOTIONS` names its primitive and the object that
+    primitive acts on), or "speak" (speech only) or "none" (nothing); `moves` tells which.
     Evidence for selecting it (AEL inputs), weights: ``intentions`` (IL),
     ``objects`` (OML), ``present``/``past`` (CSGL), ``errors`` (AML),
     ``initiative`` (the robot's own initiative when the partner is passive), ``failures`` (AML
@@ -266,6 +267,11 @@ class RobotAction:
     requires: dict[str, tuple] = field(default_factory=dict)
     effects: dict[str, object] = field(default_factory=dict)
     response: str | None = None
+
+    @property
+    def moves(self) -> bool:
+        """The robot moves its arm for it (and so may fail physically): not speech or waiting alone."""
+        return self.motion not in ("speak", "none")
 
 
 _ALL_ERRORS = {e.name: 1.0 for e in ERRORS}
@@ -301,14 +307,14 @@ ROBOT_ACTIONS: tuple[RobotAction, ...] = (
                 objects={"glass_full_RWS": 1.5}, present={"Hand-over-full-glass": 1.0}, initiative=1.0,
                 requires={"glass_state": ("full",), "glass_zone": ("RWS",)},
                 effects={"glass_zone": "HWS"}, response="take_object"),
-    RobotAction("Request-glass", "glass", "hold_out_open_hand",
+    RobotAction("Request-glass", "glass", "request_glass",
                 intentions={"Give-glass": -1.0},  # not asked for while it is being given
                 objects={"glass_empty_HWS": 1.0, "glass_inverted_HWS": 0.8, "bottle_open_RWS": 0.4,
                          "glass_empty_RWS": -1.0, "glass_inverted_RWS": -1.0, "glass_full_RWS": -1.0},
                 present={"Fill-glass": 1.0, "Turn-glass": 1.0}, initiative=1.0,
                 requires={"glass_zone": ("HWS",), "glass_state": ("inverted", "empty")},
                 effects={"glass_zone": "RWS"}, response="give_object"),
-    RobotAction("Request-bottle", "bottle", "hold_out_open_hand",
+    RobotAction("Request-bottle", "bottle", "request_bottle",
                 intentions={"Give-bottle": -1.0},  # not asked for while it is being given
                 objects={"bottle_closed_HWS": 1.0, "bottle_open_HWS": 1.0, "glass_empty_RWS": 0.3},
                 present={"Open-bottle": 1.0, "Fill-glass": 0.8}, initiative=1.0,
@@ -361,7 +367,7 @@ def facts_against(action: RobotAction) -> tuple[str, ...]:
 
 ROBOT_ACTION_BY_NAME: dict[str, RobotAction] = {a.name: a for a in ROBOT_ACTIONS}
 #: the actions that move the robot and so can fail physically: the items of the action failure layer (AFL)
-MOTION_ACTIONS: tuple[str, ...] = tuple(a.name for a in ROBOT_ACTIONS if a.motion not in ("speak", "none"))
+MOTION_ACTIONS: tuple[str, ...] = tuple(a.name for a in ROBOT_ACTIONS if a.moves)
 #: motion action -> the AML mismatch (`ACTION_FAILURES`) its repeated failure raises
 FAILURE_OF: dict[str, str] = {a: ("Cannot-take-it-from-the-hand" if a == "Receive-object" else "Keeps-failing")
                               for a in MOTION_ACTIONS}

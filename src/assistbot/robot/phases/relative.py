@@ -1,0 +1,49 @@
+"""Moves of the hand relative to where it is when they start: up, by an offset, back along its approach."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from assistbot.robot import poses
+from assistbot.robot.phases.move import Move
+
+
+class Rise(Move):
+    """Straight up from where the hand is to ``z`` (world, m), keeping its orientation."""
+
+    def __init__(self, name: str, z: float, duration: float = 1.0) -> None:
+        super().__init__(name, lambda p: self._goal, duration=duration, tolerance=0.08, settle=0.5)
+        self.z = z
+
+    def start(self, prim):
+        super().start(prim)
+        pos = self.origin.translation().copy()
+        pos[2] = max(pos[2], self.z)
+        self._goal = poses.pose(self.origin.rotation(), pos)
+
+
+class Relative(Move):
+    """Minimum-jerk move by ``offset`` (world, m) from the commanded pose at the phase's start, same orientation."""
+
+    def __init__(self, name: str, offset, duration: float = 1.0, tolerance: float = 0.03) -> None:
+        super().__init__(name, lambda p: self._goal, duration=duration, tolerance=tolerance)
+        self.offset = np.asarray(offset, float)
+
+    def start(self, prim):
+        super().start(prim)
+        self._goal = poses.pose(self.origin.rotation(), self.origin.translation() + self.offset)
+
+
+class BackOff(Relative):
+    """Withdraw the open hand along its approach axis (back toward the robot) and up a little."""
+
+    def __init__(self, name: str = "back off", distance: float = 0.14, up: float = 0.03, duration: float = 1.0) -> None:
+        super().__init__(name, np.zeros(3), duration=duration, tolerance=0.04)
+        self.distance, self.up = distance, up
+
+    def start(self, prim):
+        Move.start(self, prim)
+        ax = poses.approach_axis(self.origin.rotation())
+        ax[2] = 0.0
+        ax /= max(np.linalg.norm(ax), 1e-9)
+        self._goal = poses.pose(self.origin.rotation(), self.origin.translation() - self.distance * ax + [0, 0, self.up])

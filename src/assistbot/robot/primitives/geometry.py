@@ -1,0 +1,85 @@
+"""The objects as the robot's hand grasps them, and the hand's poses for a side grasp.
+
+Body origins are at the bottom centre of the objects; heights are above the object's base."""
+
+from __future__ import annotations
+
+import math
+from typing import TYPE_CHECKING
+
+import mink
+import numpy as np
+
+from assistbot.robot import poses
+from assistbot.robot.controller import REACH
+from assistbot.world.layout import BOTTLE_BODY_TOP, OBJECT_HEIGHT, OBJECT_RADIUS, TABLE_Z
+
+if TYPE_CHECKING:
+    from assistbot.robot.gripper import Gripper
+    from assistbot.robot.primitives.base import Primitive
+
+
+#: the height (m above its base) at which the hand grasps each object standing on the table
+GRASP_HEIGHT = {"glass": 0.05, "bottle": 0.08, "held_out": 0.06}
+#: the objects' radii (the MJCF's, through world.layout); "held_out": either, unseen which
+RADIUS = {**{o: OBJECT_RADIUS[o] for o in ("glass", "bottle")}, "held_out": (OBJECT_RADIUS["glass"] + OBJECT_RADIUS["bottle"]) / 2}
+#: how far (m) beyond REACH a grasp point may lie and still be grasped, short of the hand's middle
+REACH_SLACK = 0.025
+#: such a grasp stops this far (m) inside REACH, backing along the approach, which counts as no more
+#: oblique to the line from the shoulder than MIN_APPROACH_COS (the cosine between them)
+INSIDE_REACH = 0.003
+MIN_APPROACH_COS = 0.3
+#: m back along the approach from the grasp pose at which the open hand stops before closing in
+PRE_GRASP_BACK = 0.16
+TCP_CYLINDER_RADIUS = 0.035  # the TCP is the centre of a 70 mm cylinder touching the palm
+#: how high (m) the hand lifts an object off the table to carry it
+LIFT = 0.12
+#: the top of each object's side wall, where a side grasp's upper finger must stay below (m above the base):
+#: the glass's rim, the bottle's shoulder
+WALL_TOP = {"glass": OBJECT_HEIGHT["glass"], "bottle": BOTTLE_BODY_TOP}
+
+
+def held_grasp_height(obj: str, hand: "Gripper") -> float:
+    """Grasp height (m above the base) of an object held up by the person: the middle of the band in
+    which the whole hand lies along the object's wall (palm above the base, upper finger below the
+    wall's top), since the base is seen only to a cm or two there. The glass's band is 2 cm wide: its
+    rim lies 10 cm up, and a finger above it curls over the top onto the palm (and, opened, catches
+    inside the glass). Unknown which object ("held_out"): the band both share."""
+    top = WALL_TOP[obj] if obj in WALL_TOP else min(WALL_TOP.values())
+    return 0.5 * (hand.reach_below + top - hand.reach_above)
+
+
+def grasp_pose_at(prim: Primitive, centre: np.ndarray, obj: str, back: float = 0.0, roll: float = 0.0) -> mink.SE3:
+    """Side grasp of ``obj`` whose axis passes through ``centre`` (world, at grasp height)."""
+    rot = poses.side_rotation(centre, prim.robot.shoulder)
+    ax = poses.approach_axis(rot)
+    pos = centre - ax * (RADIUS[obj] - TCP_CYLINDER_RADIUS + back)
+    to = pos - prim.robot.shoulder
+    dist = float(np.linalg.norm(to))
+    if REACH < dist <= REACH + REACH_SLACK:
+        # just beyond the arm's reach (an object held out at the person's own limit): stop short along the
+        # approach; the object then sits nearer the fingertips of the open hand (94 mm), which still close on it
+        pos = pos - ax * (dist - REACH + INSIDE_REACH) / max(MIN_APPROACH_COS, float(ax @ to) / dist)
+    return poses.pose(rot @ mink.SO3.from_x_radians(roll), pos)
+
+
+def side_grasp_pose(prim: Primitive, back: float = 0.0, up: float = 0.0, roll: float = 0.0,
+                     height: float | None = None, held_up: bool = False) -> mink.SE3:
+    """Side grasp of the target at its grasp height above its base: on the table, or ``held_up`` by the
+    person at the height perception gives (`Primitive.base_z`)."""
+    obj = prim.object or "glass"
+    x, y = prim.xy()
+    if held_up:
+        # which object the person holds out, as seen, for where the hand fits on it
+        seen = prim.identify() if obj == "held_out" else obj
+        base_z, h = prim.base_z(), held_grasp_height(seen or obj, prim.robot.gripper)
+    else:
+        base_z, h = TABLE_Z, GRASP_HEIGHT.get(obj, GRASP_HEIGHT["held_out"])
+    c = np.array([x, y, base_z + (height if height is not None else h) + up])
+    return grasp_pose_at(prim, c, obj, back, roll)
+
+
+def half_turn(p: Primitive) -> float:
+    """The hand's roll about its approach axis to the nearest half turn: 0, or pi once it has turned the
+    glass in it. Carried either way, what it holds stands upright."""
+    return 0.0 if p.robot.commanded_tcp_pose().rotation().as_matrix()[2, 2] >= 0.0 else math.pi

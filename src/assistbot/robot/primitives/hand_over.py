@@ -1,0 +1,27 @@
+"""HandOver: carry an object to the hand-over zone and give it to the person."""
+
+from __future__ import annotations
+
+from assistbot.robot.phases import Move
+from assistbot.robot.primitives.base import Primitive
+from assistbot.robot.primitives.geometry import LIFT, side_grasp_pose
+from assistbot.robot.primitives.handing_over import give, hold_out
+from assistbot.robot.primitives.reaching import reach_and_grasp_phases
+
+
+class HandOver(Primitive):
+    """Grasp the object, carry it upright (slowly: it may be a full glass) to the hand-over zone, hold it
+    out until ``human_holds()``, let go, withdraw."""
+
+    name = "hand_over"
+
+    def __init__(self, robot, obj="glass", timeout: float = 20.0, **kw):
+        super().__init__(robot, obj, **kw)
+        self.timeout = timeout
+
+    def phases(self):
+        return reach_and_grasp_phases(self) + [
+            Move("lift", lambda p: side_grasp_pose(p, up=LIFT), duration=1.5),
+            *hold_out(duration=3.0),
+            *give(self.timeout),
+        ]

@@ -1,0 +1,74 @@
+"""HoldBottleForStopper: hold the closed bottle out for the person to pull the stopper."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from assistbot.robot.phases import Move, RememberPlace, Wait, WaitFor
+from assistbot.robot.primitives.base import Primitive
+from assistbot.robot.primitives.geometry import LIFT, side_grasp_pose
+from assistbot.robot.primitives.handing_over import hold_out, waiting_for_the_person_to_let_go
+from assistbot.robot.primitives.places import free_rws_spot
+from assistbot.robot.primitives.putting_down import put_down_at
+from assistbot.robot.primitives.reaching import reach_and_grasp_phases, retract_phases
+
+
+class HoldBottleForStopper(Primitive):
+    """Grasp the closed bottle, hold it out upright near the middle line where the human can pull the
+    stopper, keep it there until ``stopper_removed()`` (perception), put it back where it stood, let go.
+
+    A bottle seen in the HWS (target x < 0) is one the human holds out (``human_holds()``): the robot
+    grasps it at the human's hold-out height and waits until the human's hand lets go; or one the
+    human put down near the line: grasped from the table. Either way it is afterwards put down at a
+    free place in the RWS (`free_rws_spot`). The grip holds the bottle by friction against
+    the pull; the world decides when the fit gives."""
+
+    name = "hold_bottle_for_stopper"
+    HOLD_XY = (-0.045, -0.02)
+    HOLD_BASE = 0.10
+
+    def __init__(self, robot, obj="bottle", timeout: float = 30.0, **kw):
+        super().__init__(robot, obj, **kw)
+        self.timeout = timeout
+        self.home_xy: np.ndarray | None = None
+
+    def _home(self) -> np.ndarray:
+        """Where a bottle taken from the human's hand goes: a free place in the RWS (chosen once)."""
+        if self.home_xy is None:
+            self.home_xy = free_rws_spot(self)
+        return self.home_xy
+
+    def phases(self):
+        hold = [
+            *hold_out(self.HOLD_BASE, self.HOLD_XY),
+            WaitFor("hold steady for the stopper", lambda p: p.stopper_removed(), self.timeout,
+                    "the stopper was not removed"),
+            Wait("settle", 0.3),
+        ]
+        if self.xy()[0] < 0.0 and not self.human_holds():
+            # standing on the person's side, put down there for the robot: from the table, back to the RWS
+            return reach_and_grasp_phases(self) + [
+                RememberPlace(),
+                Move("lift", lambda p: side_grasp_pose(p, up=LIFT), duration=1.2),
+                *hold,
+                *put_down_at(lambda p: p._home()),
+                *retract_phases(),
+            ]
+        if self.xy()[0] < 0.0:  # held out by the human
+            return reach_and_grasp_phases(self, held_up=True) + [
+                Wait("hold", 1.5),
+                waiting_for_the_person_to_let_go(10.0),
+                *hold,
+                *put_down_at(lambda p: p._home()),
+                *retract_phases(),
+            ]
+        return reach_and_grasp_phases(self) + [
+            RememberPlace(),
+            Move("lift", lambda p: side_grasp_pose(p, up=LIFT), duration=1.2),
+            *hold_out(self.HOLD_BASE, self.HOLD_XY),
+            WaitFor("hold steady for the stopper", lambda p: p.stopper_removed(), self.timeout,
+                    "the stopper was not removed"),
+            Wait("settle", 0.3),
+            *put_down_at(lambda p: p.home_xy),
+            *retract_phases(),
+        ]

@@ -1,0 +1,49 @@
+"""The phases that reach for an object and grasp it from the side, and those that take the hand back to rest."""
+
+from __future__ import annotations
+
+from typing import TYPE_CHECKING
+
+import mink
+import numpy as np
+
+from assistbot.robot import poses
+from assistbot.robot.phases import Grip, Move, Open, Phase, Rise
+from assistbot.robot.primitives.geometry import PRE_GRASP_BACK, side_grasp_pose
+
+if TYPE_CHECKING:
+    from assistbot.robot.primitives.base import Primitive
+
+
+#: where the hand waits between actions (world, m); it first rises to that height, over what stands on the table
+READY_POSE_POS = np.array([0.30, 0.05, 1.00])
+
+
+def retract_phases(over_at: float | None = None) -> list[Phase]:
+    """Up, then back to the ready pose; with ``over_at`` (world z, m) the hand first rises to that
+    height and crosses to above the ready pose there, so it passes over the objects on its way."""
+    if over_at is None:
+        return [Rise("rise", READY_POSE_POS[2]),
+                Move("retract", lambda p: poses.pose(mink.SO3.identity(), READY_POSE_POS), duration=1.2, tolerance=0.04)]
+    above = READY_POSE_POS.copy()
+    above[2] = max(above[2], over_at)
+    return [Rise("rise", over_at),
+            Move("withdraw over", lambda p: poses.pose(mink.SO3.identity(), above), duration=1.2, tolerance=0.04),
+            Move("retract", lambda p: poses.pose(mink.SO3.identity(), READY_POSE_POS), duration=0.6, tolerance=0.04)]
+
+
+def reach_and_grasp_phases(prim: Primitive, height: float | None = None, held_up: bool = False) -> list[Phase]:
+    """Reach and grasp the target from the side: standing on the table, or ``held_up`` by the person (the
+    hand then reaches out for it as far as it can, and waits for it there: `Move.reach_out`)."""
+    return [
+        Open("open"),
+        Rise("rise", READY_POSE_POS[2]),
+        Move("ready", lambda p: poses.pose(mink.SO3.identity(), READY_POSE_POS), duration=1.2, tolerance=0.04),
+        Move("above pre-grasp", lambda p: side_grasp_pose(p, back=PRE_GRASP_BACK, up=0.10, height=height, held_up=held_up), duration=1.5,
+             reach_out=held_up),
+        Move("pre-grasp", lambda p: side_grasp_pose(p, back=PRE_GRASP_BACK, up=0.0, height=height, held_up=held_up), duration=0.8,
+             reach_out=held_up),
+        Move("approach", lambda p: side_grasp_pose(p, height=height, held_up=held_up), duration=1.0, tolerance=0.025,
+             reach_out=held_up),
+        Grip(True, "grasp"),
+    ]

@@ -1,0 +1,37 @@
+"""TurnGlass: grasp the inverted glass, roll it 180 deg in the air, put it down upright."""
+
+from __future__ import annotations
+
+import math
+
+from assistbot.robot.phases import Move, Open, Phase, SetCarrying
+from assistbot.robot.primitives.base import Primitive
+from assistbot.robot.primitives.geometry import LIFT, PRE_GRASP_BACK, side_grasp_pose
+from assistbot.robot.primitives.reaching import reach_and_grasp_phases, retract_phases
+
+
+def turn_phases() -> list[Phase]:
+    # the inverted glass is grasped at its middle too (its height is symmetric)
+    return [
+        Move("lift", lambda p: side_grasp_pose(p, up=LIFT), duration=1.2),
+        Move("turn half", lambda p: side_grasp_pose(p, up=LIFT, roll=math.pi / 2), duration=1.2),
+        Move("turn", lambda p: side_grasp_pose(p, up=LIFT, roll=math.pi), duration=1.2),
+    ]
+
+
+class TurnGlass(Primitive):
+    """Grasp the inverted glass, lift, roll it 180 deg about the approach axis, put it down upright, let go."""
+
+    name = "turn_glass"
+
+    def __init__(self, robot, obj="glass", **kw):
+        super().__init__(robot, obj, **kw)
+
+    def phases(self):
+        return reach_and_grasp_phases(self) + turn_phases() + [
+            Move("lower", lambda p: side_grasp_pose(p, up=0.008, roll=math.pi), duration=1.2),
+            Open("release"),
+            SetCarrying(False),
+            Move("back off", lambda p: side_grasp_pose(p, back=PRE_GRASP_BACK, up=0.03, roll=math.pi), duration=1.0, tolerance=0.04),
+            *retract_phases(),
+        ]
