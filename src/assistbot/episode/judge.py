@@ -23,7 +23,7 @@ from collections import Counter
 import mujoco
 import numpy as np
 
-from assistbot import task
+from assistbot import catalogue, task
 from assistbot.interfaces import Status
 from assistbot.world import layout
 
@@ -42,7 +42,7 @@ FALL_TAGS = {task.UTTERANCES["AML"][item].tag: obj for obj, item in task.FALLS.i
 #: robot joint speed (rad/s) above which the robot counts as moving
 MOVING_SPEED = 0.05
 #: the objects whose fall ends the task (the stopper, once off, is set aside and not needed)
-TASK_OBJECTS = ("bottle", "glass")
+TASK_OBJECTS = catalogue.TASK_OBJECTS
 
 
 class Judge:
@@ -97,7 +97,7 @@ class Judge:
             if name in held:
                 continue
             axis_z = float(d.xmat[b][8])
-            upright = axis_z > math.cos(FALLEN_TILT) or (name == "glass" and axis_z < -math.cos(FALLEN_TILT))
+            upright = axis_z > math.cos(FALLEN_TILT) or ("inverted" in catalogue.BY_NAME[name].states and axis_z < -math.cos(FALLEN_TILT))
             off_table = float(d.xpos[b][2]) < layout.TABLE_Z - 0.05
             if not upright or off_table:
                 out.append(name)
