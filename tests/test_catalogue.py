@@ -54,7 +54,7 @@ def test_task_objects_have_states_and_a_classifier_in_the_template_library():
         assert KINDS[name] == catalogue.STATES[name]
         assert tuple(index[name]["classes"]) == catalogue.STATES[name]
         for zone in layout.ZONES:
-            assert (name, zone) in layout.DEFAULT_POSITIONS
+            assert zone in catalogue.BY_NAME[name].places
 
 
 def test_one_posture_list_for_the_task_and_vision():

@@ -13,7 +13,7 @@ costs nothing. A new object needs its entry here and its bodies, sites and welds
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from functools import cache
 
 
@@ -29,6 +29,8 @@ class CatalogueObject:
     parts: tuple[str, ...]     # other catalogue objects that start fitted on it
     colour: str                # the vision colour class (assistbot.vision.segment.PARTS)
     task: bool                 # a task object (see the module docstring)
+    #: a task object's default place (table x, y, m) per zone, where an arrangement without a position puts it
+    places: dict[str, tuple[float, float]] = field(default_factory=dict, compare=False)
 
     @property
     def body(self) -> str:
@@ -37,9 +39,14 @@ class CatalogueObject:
 
 
 OBJECTS: tuple[CatalogueObject, ...] = (
-    CatalogueObject("bottle", ("closed", "open"), "bottle_visual_body", "bottle_grasp", "bottle_mouth", ("stopper",), "bottle", True),
-    CatalogueObject("glass", ("inverted", "empty", "full"), "glass_base", "glass_grasp", "glass_rim", (), "glass", True),
-    CatalogueObject("stopper", (), "stopper_cap", "stopper_grasp", None, (), "stopper", False),
+    CatalogueObject("bottle", states=("closed", "open"), radius_geom="bottle_visual_body", grasp_site="bottle_grasp",
+                    top_site="bottle_mouth", parts=("stopper",), colour="bottle", task=True,
+                    places={"HWS": (-0.22, -0.12), "RWS": (0.20, 0.12)}),
+    CatalogueObject("glass", states=("inverted", "empty", "full"), radius_geom="glass_base", grasp_site="glass_grasp",
+                    top_site="glass_rim", parts=(), colour="glass", task=True,
+                    places={"HWS": (-0.22, 0.12), "RWS": (0.20, -0.12)}),
+    CatalogueObject("stopper", states=(), radius_geom="stopper_cap", grasp_site="stopper_grasp",
+                    top_site=None, parts=(), colour="stopper", task=False),
 )
 BY_NAME: dict[str, CatalogueObject] = {o.name: o for o in OBJECTS}
 #: every object's name, in catalogue order

@@ -41,8 +41,6 @@ NOTICE_SECONDS = 5.0
 FALL_TAGS = {task.UTTERANCES["AML"][item].tag: obj for obj, item in task.FALLS.items()}
 #: robot joint speed (rad/s) above which the robot counts as moving
 MOVING_SPEED = 0.05
-#: the objects whose fall ends the task (the stopper, once off, is set aside and not needed)
-TASK_OBJECTS = catalogue.TASK_OBJECTS
 
 
 class Judge:
@@ -92,7 +90,7 @@ class Judge:
         w, d = self.world, self.world.data
         held = {w.human_holding(), w.robot_holding()}
         out = []
-        for name in TASK_OBJECTS:
+        for name in catalogue.TASK_OBJECTS:    # the stopper, once off, is set aside and not needed
             b = w.body_id[name]
             if name in held:
                 continue

@@ -27,7 +27,7 @@ class Arrangement:
     Build it with one placement per task object, by position in catalogue order or by name
     (``Arrangement(bottle=..., glass=...)``). The states are the catalogue's (a full glass: the
     liquid starts in the glass, otherwise it is in the bottle).  Positions are table
-    coordinates; None means the zone's default place (`layout.DEFAULT_POSITIONS`).
+    coordinates; None means the zone's default place (the catalogue entry's `places`).
     """
 
     placements: tuple[Placement, ...]   # one per task object, in catalogue order
@@ -79,7 +79,7 @@ class Arrangement:
     def position(self, name: str) -> tuple[float, float]:
         """The table (x, y) of a task object: explicit or the zone's default."""
         p = self.placement(name)
-        return tuple(p.position) if p.position is not None else layout.DEFAULT_POSITIONS[(name, p.zone)]  # type: ignore[return-value]
+        return tuple(p.position) if p.position is not None else catalogue.BY_NAME[name].places[p.zone]  # type: ignore[return-value]
 
     def label(self) -> str:
         return "_".join(f"{n}-{p.zone}-{p.state}" for n, p in zip(catalogue.TASK_OBJECTS, self.placements))

@@ -37,13 +37,6 @@ N_PARTICLES = 40
 #: out to the person. The one definition for vision, the oracle and the person's eyes.
 HANDOVER_ZONE_X = (-0.15, 0.08)
 
-#: default places (table x, y) per object and zone
-DEFAULT_POSITIONS = {
-    ("bottle", "HWS"): (-0.22, -0.12),
-    ("glass", "HWS"): (-0.22, 0.12),
-    ("bottle", "RWS"): (0.20, 0.12),
-    ("glass", "RWS"): (0.20, -0.12),
-}
 #: where a removed stopper stands (in the HWS, at the human's left hand)
 STOPPER_PARK = (-0.30, 0.36)
 

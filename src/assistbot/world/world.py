@@ -134,8 +134,13 @@ class World:
             d.eq_active[self.eq_hold[o]] = 0
         arr = self.arrangement
         z = layout.TABLE_Z
+        for o in catalogue.TASK_OBJECTS:   # upright on the table, or upside down standing on its rim
+            x, y = arr.position(o)
+            if arr.placement(o).state == "inverted":
+                self._set_free(o, (x, y, z + catalogue.height(o)), _quat_x180())
+            else:
+                self._set_free(o, (x, y, z), (1, 0, 0, 0))
         bx, by = arr.position("bottle")
-        self._set_free("bottle", (bx, by, z), (1, 0, 0, 0))
         if arr.bottle.state == "closed":
             self._set_free("stopper", (bx, by, z + catalogue.height("bottle")), (1, 0, 0, 0))
             d.eq_active[self.eq_stopper] = 1
@@ -144,10 +149,6 @@ class World:
             self._set_free("stopper", (sx, sy, z + layout.STOPPER_PLUG_DEPTH), (1, 0, 0, 0))
             d.eq_active[self.eq_stopper] = 0
         gx, gy = arr.position("glass")
-        if arr.glass.state == "inverted":
-            self._set_free("glass", (gx, gy, z + catalogue.height("glass")), _quat_x180())
-        else:
-            self._set_free("glass", (gx, gy, z), (1, 0, 0, 0))
         # liquid: one layer on the inner floor of its container (particles do not touch each other)
         rng = np.random.default_rng(self.seed)
         n = len(self.particle_bodies)
