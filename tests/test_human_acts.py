@@ -6,11 +6,12 @@ import numpy as np
 import pytest
 
 from assistbot.human.arm import HANDOVER_X_MAX
-from assistbot.human.behaviours import DRINK_FRACTION, POINT_X_MAX
+from assistbot.human.behaviours import POINT_X_MAX
 from assistbot.human.controller import HumanController
 from assistbot.human.profiles import PROFILES
 from assistbot.human.script import parse_human
 from assistbot.human.standin import StandIn, build_world_with_standin
+from assistbot.task import DRINK_FRACTION
 from assistbot.world import Arrangement, build_world, layout
 
 

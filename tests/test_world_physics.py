@@ -8,17 +8,17 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
+from assistbot.catalogue import grasp_height
 from assistbot.world import ROBOT_ARM_JOINTS, Arrangement, build_world
 from assistbot.world.scripted import ik, ramp
 
 I3 = np.eye(3)
 FINGERS = ("robot_finger1", "robot_finger2", "robot_finger3")
-GRASP_HEIGHT = {"bottle": 0.08, "glass": 0.05}
 
 
 def _robot_grasp(w, obj: str) -> dict[str, float]:
     """Drive the arm around `obj` (horizontal approach from the robot's side) and close the fingers."""
-    c = w.data.xpos[w.body_id[obj]].copy() + [0, 0, GRASP_HEIGHT[obj]]
+    c = w.data.xpos[w.body_id[obj]].copy() + [0, 0, grasp_height(obj)]
     zero = {j: 0.0 for j in ROBOT_ARM_JOINTS}
     back = ik(w, "robot_tcp", c + [0.22, 0, 0.05], I3, ROBOT_ARM_JOINTS, q_start=zero)
     pre = ik(w, "robot_tcp", c + [0.17, 0, 0], I3, ROBOT_ARM_JOINTS, q_start=back)
@@ -50,7 +50,7 @@ def test_robot_holds_by_friction_through_lift_and_pour_tilt(obj, arrangement):
     start = w.data.xpos[w.body_id[obj]].copy()
     at = _robot_grasp(w, obj)
     r0 = _in_tcp(w, obj)
-    c = start + [0, 0, GRASP_HEIGHT[obj]]
+    c = start + [0, 0, grasp_height(obj)]
     up = ik(w, "robot_tcp", c + [0, 0, 0.20], I3, ROBOT_ARM_JOINTS, q_start=at)
     t0 = w.time
     ramp(w, up, 1.5, 0.3)
@@ -72,7 +72,7 @@ def test_robot_holds_by_friction_through_lift_and_pour_tilt(obj, arrangement):
 def test_pour_from_open_bottle_fills_the_glass():
     w = build_world(Arrangement.from_options("RWS:open@0.12,0.12", "RWS:empty@0.12,-0.06"))
     at = _robot_grasp(w, "bottle")
-    c = w.data.xpos[w.body_id["bottle"]].copy() + [0, 0, GRASP_HEIGHT["bottle"]]
+    c = w.data.xpos[w.body_id["bottle"]].copy() + [0, 0, grasp_height("bottle")]
     lift = ik(w, "robot_tcp", c + [0, 0, 0.13], I3, ROBOT_ARM_JOINTS, q_start=at)
     ramp(w, lift, 1.0, 0.2)
     over = ik(w, "robot_tcp", (0.12, 0.05, c[2] + 0.13), I3, ROBOT_ARM_JOINTS, q_start=lift)
@@ -87,7 +87,7 @@ def test_pour_from_open_bottle_fills_the_glass():
 def test_full_glass_carried_level_spills_little_and_inverted_holds_none():
     w = build_world(Arrangement.from_options("HWS:closed", "RWS:full@0.12,0.05"))
     at = _robot_grasp(w, "glass")
-    c = w.data.xpos[w.body_id["glass"]].copy() + [0, 0, GRASP_HEIGHT["glass"]]
+    c = w.data.xpos[w.body_id["glass"]].copy() + [0, 0, grasp_height("glass")]
     up = ik(w, "robot_tcp", c + [0, 0, 0.15], I3, ROBOT_ARM_JOINTS, q_start=at)
     ramp(w, up, 1.2, 0.2)
     across = ik(w, "robot_tcp", c + [0.0, -0.15, 0.15], I3, ROBOT_ARM_JOINTS, q_start=up)

@@ -14,6 +14,7 @@ import argparse
 import os
 from pathlib import Path
 
+from assistbot import catalogue
 from assistbot.errors import UserError
 
 NAME = "act"
@@ -27,8 +28,8 @@ STAND_IN_HOLD_OUT = (-0.03, -0.05)
 def add_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument("arrangement", help="fig3 | fig4 | fig5 | SCENARIO.yaml | custom (with --bottle and --glass)")
     p.add_argument("action", help="an AEL action name, e.g. Reach-and-turn-glass")
-    p.add_argument("--bottle", metavar="ZONE:STATE[@x,y]", help="with custom: the bottle, e.g. RWS:open@0.2,0.12")
-    p.add_argument("--glass", metavar="ZONE:STATE[@x,y]", help="with custom: the glass, e.g. RWS:inverted")
+    for name, states in catalogue.STATES.items():
+        p.add_argument(f"--{name}", metavar="ZONE:STATE[@x,y]", help=f"with custom: the {name}, e.g. RWS:{states[0]}@0.2,0.1")
     p.add_argument("--out", type=Path, default=Path("render/act"), help="output folder")
     p.add_argument("--seconds", type=float, default=45.0, help="simulated time limit")
 
@@ -40,10 +41,12 @@ def _arrangement(args):
     if args.arrangement in PAPER_ARRANGEMENTS:
         return PAPER_ARRANGEMENTS[args.arrangement]
     if args.arrangement == "custom":
-        if not (args.bottle and args.glass):
-            raise UserError("arguments", "--bottle/--glass", "custom needs both, e.g. --bottle RWS:open --glass RWS:empty")
-        return Arrangement.from_options(args.bottle, args.glass)
-    ns = argparse.Namespace(scenario=args.arrangement, bottle=None, glass=None)
+        given = [getattr(args, name) for name in catalogue.TASK_OBJECTS]
+        if not all(given):
+            options = [f"--{name}" for name in catalogue.TASK_OBJECTS]
+            raise UserError("arguments", "/".join(options), f"custom needs all of {', '.join(options)}")
+        return Arrangement.from_options(*given)
+    ns = argparse.Namespace(scenario=args.arrangement, **{name: None for name in catalogue.TASK_OBJECTS})
     return arrangement_from_args(ns)
 
 

@@ -11,12 +11,12 @@ import math
 import mujoco
 import numpy as np
 
+from assistbot import catalogue
 from assistbot.episode.judge import Judge
 from assistbot.episode.touch import TouchMonitor
 from assistbot.interfaces import ActionRecord, PartnerEvent
+from assistbot.task import DRINK_FRACTION
 
-#: of the glass's particles when the person starts to drink: drunk this much, the task is done
-DRINK_FRACTION = 0.75
 #: the bodies of the person a robot must keep its distance from (the safety measure); the hand is not one
 PERSON_TRUNK = ("human_body", "human_head", "human_torso")
 
@@ -65,7 +65,7 @@ class DrinkingTask:
         s = self.world.state()
         cur = {
             "stopper": s.stopper_attached, "glass_state": s.glass_state, "robot_holds": s.robot_holds,
-            "human_holds": s.human_holds, **{f"{o}_zone": s.objects[o].zone for o in ("bottle", "glass")},
+            "human_holds": s.human_holds, **{f"{o}_zone": s.objects[o].zone for o in catalogue.TASK_OBJECTS},
         }
         p = self._prev
         if p is not None:
@@ -78,7 +78,7 @@ class DrinkingTask:
             for who in ("robot_holds", "human_holds"):
                 if p[who] != cur[who]:
                     self._event(t, f"{who.split('_')[0]}_{'grasped' if cur[who] else 'released'}", object=cur[who] or p[who])
-            for obj in ("bottle", "glass"):
+            for obj in catalogue.TASK_OBJECTS:
                 if p[f"{obj}_zone"] != cur[f"{obj}_zone"]:
                     self._event(t, "crossed_middle_line", object=obj, to=cur[f"{obj}_zone"])
         self._prev = cur

@@ -13,13 +13,13 @@ from collections import deque
 
 import numpy as np
 
+from assistbot import catalogue
 from assistbot.cognition.percept import STANDING_Z, HandPercept, Percept, RobotPercept, away_from_hand
 from assistbot.interfaces import ActionRecord, Status
 from assistbot.robot.actions import ACTION_PRIMITIVES
 from assistbot.robot.controller import RobotController
 from assistbot.speech import reading_time
 from assistbot.task import OBJECTS
-from assistbot.world.layout import OBJECT_HEIGHT
 
 # How long the robot keeps still for an action that is only speech.
 WAIT_SECONDS = 2.0
@@ -133,7 +133,7 @@ class RobotExecutor:
         if o is not None and o.seen and o.position[2] > STANDING_Z:
             seen.append(float(o.position[2]))
         if h.seen and name is not None and h.object_in_hand == name:
-            height = OBJECT_HEIGHT[name]
+            height = catalogue.height(name)
             seen.append(float(h.position[2]) - (height if h.posture == "grasp_ag" else height / 2))
         # the higher of the two: a hand over the top hides part of the object and vision then places it
         # low, and a grasp too low cannot set the object down again (the palm meets the table first)

@@ -23,7 +23,7 @@ from collections import Counter
 import mujoco
 import numpy as np
 
-from assistbot import task
+from assistbot import catalogue, task
 from assistbot.interfaces import Status
 from assistbot.world import layout
 
@@ -41,8 +41,6 @@ NOTICE_SECONDS = 5.0
 FALL_TAGS = {task.UTTERANCES["AML"][item].tag: obj for obj, item in task.FALLS.items()}
 #: robot joint speed (rad/s) above which the robot counts as moving
 MOVING_SPEED = 0.05
-#: the objects whose fall ends the task (the stopper, once off, is set aside and not needed)
-TASK_OBJECTS = ("bottle", "glass")
 
 
 class Judge:
@@ -92,12 +90,12 @@ class Judge:
         w, d = self.world, self.world.data
         held = {w.human_holding(), w.robot_holding()}
         out = []
-        for name in TASK_OBJECTS:
+        for name in catalogue.TASK_OBJECTS:    # the stopper, once off, is set aside and not needed
             b = w.body_id[name]
             if name in held:
                 continue
             axis_z = float(d.xmat[b][8])
-            upright = axis_z > math.cos(FALLEN_TILT) or (name == "glass" and axis_z < -math.cos(FALLEN_TILT))
+            upright = axis_z > math.cos(FALLEN_TILT) or ("inverted" in catalogue.BY_NAME[name].states and axis_z < -math.cos(FALLEN_TILT))
             off_table = float(d.xpos[b][2]) < layout.TABLE_Z - 0.05
             if not upright or off_table:
                 out.append(name)

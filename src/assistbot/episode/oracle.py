@@ -11,6 +11,7 @@ from typing import Callable
 
 import numpy as np
 
+from assistbot import catalogue
 from assistbot.cognition.oracle import ORACLE_LABEL, oracle_percept
 from assistbot.cognition.percept import Percept, RobotPercept
 from assistbot.interfaces import PartnerView
@@ -26,7 +27,7 @@ def _hand_truth(world, partner: PartnerView) -> dict:
     hand = world.site_pos("human_r_grasp")
     xyz = [float(hand[0]), float(hand[1]), float(hand[2] - TABLE_Z)]
     holding = world.human_holding()
-    if holding not in ("bottle", "glass"):
+    if holding not in catalogue.TASK_OBJECTS:
         holding = None  # the stopper in hand is part of removing it, not an object of the task
     posture, behaviour, args = partner.posture, partner.behaviour, partner.args
     out: dict = {"position": xyz, "posture": "none", "object_in_hand": holding}
@@ -67,12 +68,12 @@ class OraclePerception:
         tz = TABLE_Z
         truth: dict = {"robot": {"holding": robot.holding, "action": robot.action, "status": robot.status},
                        "hand": _hand_truth(self.world, self.partner_view())}
-        for name in ("bottle", "glass"):
+        for name in catalogue.TASK_OBJECTS:
             o = s.objects[name]
             pos = standing_end(self.world, name)   # as vision places it: an inverted glass stands on its rim
             truth[name] = {
                 "zone": o.zone,
-                "state": s.bottle_state if name == "bottle" else s.glass_state,
+                "state": s.state_of(name),
                 "position": [float(pos[0]), float(pos[1]), float(pos[2] - tz)],
                 # on its side on the table, in no one's hand
                 "lying": bool(not (o.upright or o.inverted) and o.held_by is None),

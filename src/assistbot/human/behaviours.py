@@ -15,9 +15,11 @@ from typing import Callable, Generator
 
 import numpy as np
 
+from assistbot import catalogue
 from assistbot.human.arm import SHOULDER_XY, grip_orientation, rot_y, rot_z
 from assistbot.human.perception import RobotView
 from assistbot.interfaces import Status
+from assistbot.task import DRINK_FRACTION
 from assistbot.world import layout
 from assistbot.world.state import standing_end
 
@@ -60,7 +62,6 @@ OWN_SIDE_SPOTS = ((-0.24, -0.20), (-0.24, -0.06), (-0.24, 0.08), (-0.24, 0.22))
 OWN_SIDE_CLEAR = 0.12
 #: grasp-site height above the object's base (m), per object and grip
 GRASP_HEIGHT = {("bottle", "ag"): 0.17, ("bottle", "sg"): 0.085, ("glass", "ag"): 0.085, ("glass", "sg"): 0.055}
-DRINK_FRACTION = 0.75             # share of the glass's particles that must reach the mouth
 POINT_X_MAX = -0.10               # world x, the pointing hand stays behind this
 POINT_TOLERANCE = 0.35            # rad, finger direction vs the direction to the object
 TURN_LIFT = 0.04                  # m, the inverted glass is lifted this much before the half turn
@@ -162,13 +163,13 @@ def _carry_height(c, p) -> float | None:
     """The hand height (world z) at which the object in the hand passes CARRY_CLEARANCE above every other
     object standing within reach of the straight way to p; None when nothing is in the hand or in the way."""
     held = c.world.human_holding()
-    if held not in layout.OBJECT_HEIGHT:
+    if held not in catalogue.TASK_OBJECTS:
         return None
     hand = c.arm.hand_pose()[0]
     below = hand[2] - float(np.min([standing_end(c.world, held)[2], _pos(c, held)[2]]))  # hand above the held object's bottom
     a, b = hand[:2], np.asarray(p, float)[:2]
     need = None
-    for other in layout.OBJECT_HEIGHT:
+    for other in catalogue.TASK_OBJECTS:
         if other == held or other == c.world.robot_holding():
             continue
         base = standing_end(c.world, other)
@@ -176,8 +177,8 @@ def _carry_height(c, p) -> float | None:
             continue
         ab = b - a
         s = float(np.clip((base[:2] - a) @ ab / max(float(ab @ ab), 1e-12), 0.0, 1.0))
-        if np.linalg.norm(base[:2] - (a + s * ab)) < layout.OBJECT_RADIUS[held] + layout.OBJECT_RADIUS[other] + CARRY_CLEARANCE:
-            top = base[2] + layout.OBJECT_HEIGHT[other] + (layout.STOPPER_HEIGHT if other == "bottle" else 0.0)
+        if np.linalg.norm(base[:2] - (a + s * ab)) < catalogue.radius(held) + catalogue.radius(other) + CARRY_CLEARANCE:
+            top = base[2] + catalogue.height(other) + (layout.STOPPER_HEIGHT if other == "bottle" else 0.0)
             need = max(need or 0.0, top + CARRY_CLEARANCE + below)
     return need
 
@@ -202,7 +203,7 @@ def _center_base(c, obj: str) -> np.ndarray:
 
 def grasp_point(c, obj: str, grip: str) -> np.ndarray:
     p, a = _pos(c, obj), _axis(c, obj)
-    return p + GRASP_HEIGHT[(obj, grip)] * a if a[2] >= 0 else p + (layout.GLASS_HEIGHT - GRASP_HEIGHT[(obj, grip)]) * a
+    return p + GRASP_HEIGHT[(obj, grip)] * a if a[2] >= 0 else p + (catalogue.height("glass") - GRASP_HEIGHT[(obj, grip)]) * a
 
 
 # ---------------------------------------------------------------------------- behaviours
@@ -236,7 +237,7 @@ def hold_out_point(c) -> np.ndarray:
 
 def _middle(c, obj: str) -> np.ndarray:
     """The middle of an object held about upright or upside down (world): half its height above the end it stands on."""
-    return standing_end(c.world, obj) + np.array([0.0, 0.0, 0.5 * layout.OBJECT_HEIGHT[obj]])
+    return standing_end(c.world, obj) + np.array([0.0, 0.0, 0.5 * catalogue.height(obj)])
 
 
 def _give_into_the_robots_hand(c, held: str, timeout: float) -> Gen:
@@ -297,7 +298,7 @@ def hold_out(c, object: str | None = None) -> Gen:
 def own_side_spot(c, held: str) -> np.ndarray:
     """A free place on the person's side, back from the hand-over zone, for putting ``held`` down: of
     OWN_SIDE_SPOTS the one farthest from the other objects standing there (a person's eyes)."""
-    others = [standing_end(c.world, o)[:2] for o in layout.OBJECT_HEIGHT if o != held]
+    others = [standing_end(c.world, o)[:2] for o in catalogue.TASK_OBJECTS if o != held]
     spots = np.array(OWN_SIDE_SPOTS, float)
     clear = np.min([np.linalg.norm(spots - o, axis=1) for o in others], axis=0) if others else np.zeros(len(spots))
     hand = c.arm.hand_pose()[0][:2]
@@ -318,7 +319,7 @@ def put_down(c, object: str | None = None, at: tuple[float, float] | None = None
     offset = hand - base                                   # hand relative to the object's base
     if at is not None:
         spot = np.array(at, float)
-    elif base[0] > OWN_SIDE_X and held in layout.OBJECT_HEIGHT:
+    elif base[0] > OWN_SIDE_X and held in catalogue.TASK_OBJECTS:
         spot = own_side_spot(c, held)
     else:
         spot = base[:2]
@@ -341,7 +342,7 @@ def put_down_for_robot(c) -> Gen:
     """Asked to set what the hand holds down under the robot's hand: put it down on the table below the
     robot's hand as seen, as close to it as the arm goes."""
     held = c.world.human_holding()
-    if held not in layout.OBJECT_HEIGHT:
+    if held not in catalogue.TASK_OBJECTS:
         return False, "nothing in hand to set down"
     # the robot's open hand comes to show the place: wait until it is held out there, still
     tcp = yield from _robot_hand_still(c, lambda v: v.requests, MEET_STILL, 15.0)
@@ -566,7 +567,7 @@ def drink(c, timeout: float = 6.0, put_back: bool = True) -> Gen:
     axis0 = Rc @ Rg_in_hand[:, 2]
     toward_face = np.array([-1.0, 0.0, 0.0]) - axis0 * -axis0[0]
     toward_face /= max(float(np.linalg.norm(toward_face)), 1e-9)
-    lip_in_hand = Rc.T @ (Rc @ g_in_hand + layout.GLASS_HEIGHT * axis0 + layout.GLASS_INNER_RADIUS * toward_face)
+    lip_in_hand = Rc.T @ (Rc @ g_in_hand + catalogue.height("glass") * axis0 + layout.GLASS_INNER_RADIUS * toward_face)
     lip_at = mouth + LIP_OFFSET
 
     def pose(tilt: float, away: float = 0.0):
@@ -621,18 +622,18 @@ def pour(c, timeout: float = POUR_TIMEOUT) -> Gen:
             return False, why
     hand, R0 = c.arm.hand_pose()
     Rb = w.data.xmat[w.body_id["bottle"]].reshape(3, 3)
-    mouth_in_hand = R0.T @ (_pos(c, "bottle") + Rb @ np.array([0.0, 0.0, layout.BOTTLE_MOUTH_Z]) - hand)
+    mouth_in_hand = R0.T @ (_pos(c, "bottle") + Rb @ np.array([0.0, 0.0, catalogue.height("bottle")]) - hand)
     palm = R0[:, 1].copy()
     palm[2] = 0.0
     palm /= max(float(np.linalg.norm(palm)), 1e-9)
     tip = np.cross([0.0, 0.0, 1.0], palm)          # tilting about this turns the bottle's top toward the palm
-    rim = _center_base(c, "glass") + np.array([0.0, 0.0, layout.GLASS_HEIGHT])
-    beside = layout.GLASS_RADIUS + layout.BOTTLE_RADIUS + 0.02
+    rim = _center_base(c, "glass") + np.array([0.0, 0.0, catalogue.height("glass")])
+    beside = catalogue.radius("glass") + catalogue.radius("bottle") + 0.02
 
     def pose(f: float):
         """Fraction f of the pour: 0 upright beside the glass with its base above the rim, 1 fully tilted."""
         Rh = _rodrigues(tip, f * POUR_TILT) @ R0
-        mouth = rim - palm * beside * (1.0 - f) + np.array([0.0, 0.0, MOUTH_ABOVE_RIM + (1.0 - f) * layout.BOTTLE_MOUTH_Z])
+        mouth = rim - palm * beside * (1.0 - f) + np.array([0.0, 0.0, MOUTH_ABOVE_RIM + (1.0 - f) * catalogue.height("bottle")])
         return mouth - Rh @ mouth_in_hand, Rh
 
     p, R = pose(0.0)

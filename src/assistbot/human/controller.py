@@ -22,6 +22,7 @@ from typing import Callable
 
 import numpy as np
 
+from assistbot import catalogue
 from assistbot.human import policy
 from assistbot.human.arm import HumanArm
 from assistbot.human.behaviours import BEHAVIOURS, Behaviour
@@ -173,7 +174,7 @@ class HumanController:
                 self.log.append(Event(self.t, "note", "dropped", {"behaviour": name, "reason": f"no longer sees {sight}", **args}))
                 continue
             if policy.still_relevant(self, name, args):
-                if name in policy.NEEDS_FREE_HAND and self.world.human_holding() in ("bottle", "glass"):
+                if name in policy.NEEDS_FREE_HAND and self.world.human_holding() in catalogue.TASK_OBJECTS:
                     self._pending.insert(0, (name, args))
                     self.start("put_down")
                     return

@@ -8,6 +8,7 @@ already did; with a seeded chance it first grasps with the wrong grip.
 
 from __future__ import annotations
 
+from assistbot import catalogue
 from assistbot.task.drinking import TAG_RESPONSES
 from assistbot.world.layout import HANDOVER_ZONE_X
 
@@ -30,7 +31,7 @@ def _scene(c) -> dict:
     w = c.world
     d = w.data
     out = {}
-    for o in ("bottle", "glass"):
+    for o in catalogue.TASK_OBJECTS:
         b = w.body_id[o]
         out[o + "_x"] = float(d.xpos[b][0])
         out[o + "_up"] = float(d.xmat[b][8])
@@ -62,7 +63,7 @@ def response_to_tag(c, tag: str) -> list[tuple[str, dict]]:
         return _put_down_first(holding, what) + [("hand_to_robot", {"object": what, "grip": "ag"})]
     if kind == "drink":
         return _put_down_first(holding, "glass") + [("drink", {})]
-    if kind == "put_down_here" and holding in ("bottle", "glass"):
+    if kind == "put_down_here" and holding in catalogue.TASK_OBJECTS:
         return [("put_down_for_robot", {})]
     if tag == "error:cannot_remove_stopper" and holding == "bottle" and c.profile.initiative:
         # the robot cannot take the bottle from a side grip: put it down, offer it from above

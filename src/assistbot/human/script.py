@@ -33,10 +33,11 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 from typing import Any, Mapping
 
+from assistbot import catalogue
 from assistbot.errors import UserError
 from assistbot.human.profiles import HOLD_OUT_REGION, PROFILES, Profile
 
-OBJECTS = ("bottle", "glass")
+OBJECTS = catalogue.TASK_OBJECTS
 GRIPS = {"ag": "ag", "above": "ag", "sg": "sg", "side": "sg"}
 #: step -> (behaviour, allowed keys, required keys)
 STEPS: dict[str, tuple[str, tuple[str, ...], tuple[str, ...]]] = {

@@ -18,14 +18,18 @@ from __future__ import annotations
 import mujoco
 import numpy as np
 
+from assistbot import catalogue
 from assistbot.human.arm import min_jerk
 from assistbot.human.perception import RobotView, held_out_x
 from assistbot.world import Arrangement, World, layout
 
-HOLDABLE = ("bottle", "glass")
+#: what the stand-in holds: what the robot hands over, the task objects
+HOLDABLE = catalogue.TASK_OBJECTS
+#: m between an object's wall and the block's centre when the block holds it
+HOLD_BESIDE = 0.025
 #: the block's offset from an object's body origin when it takes hold (world, m): beside the
-#: object on the robot's side, at a height a gripper would take it
-HOLD_OFFSET = {"bottle": np.array([0.06, 0.0, 0.08]), "glass": np.array([0.065, 0.0, 0.05])}
+#: object on the robot's side, at the height a gripper takes it (its grasp site)
+HOLD_OFFSET = {o: np.array([catalogue.radius(o) + HOLD_BESIDE, 0.0, catalogue.grasp_height(o)]) for o in HOLDABLE}
 #: s an object held out must stay still before the stand-in reaches for it
 STILL_FOR = 0.3
 #: where the stand-in waits, far in the robot's workspace
@@ -110,7 +114,7 @@ class StandIn:
     def hold(self, obj: str) -> None:
         """Take hold of `obj` where the block and the object are now (the weld keeps their relative pose)."""
         if obj not in HOLDABLE:
-            raise ValueError(f"the stand-in holds the bottle or the glass, not {obj!r}")
+            raise ValueError(f"the stand-in holds {' or '.join(HOLDABLE)}, not {obj!r}")
         m, d = self.world.model, self.world.data
         o = self.world.body_id[obj]
         e = self.eq[obj]

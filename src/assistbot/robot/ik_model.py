@@ -17,6 +17,7 @@ from pathlib import Path
 
 import mujoco
 
+from assistbot import catalogue
 from assistbot.world import layout
 
 ARM_JOINTS: tuple[str, ...] = tuple(f"robot_j{i}" for i in range(1, 8))
@@ -32,11 +33,11 @@ HAND_GEOMS: tuple[str, ...] = ARM_GEOMS[3:]
 #: the robot's own fixed body, which the forearm and hand must not fold into
 BODY_GEOMS: tuple[str, ...] = ("robot_column", "robot_pedestal")
 
-_DROP_BODIES = ("bottle", "stopper", "glass", "human_r_upper_arm")
-#: object -> (radius, height) of the cylinder that stands for it as an obstacle (m): the bottle with its stopper
+_DROP_BODIES = (*catalogue.NAMES, "human_r_upper_arm")
+#: task object -> (radius, height) of the cylinder that stands for it as an obstacle (m): the bottle with its stopper
 OBSTACLES: dict[str, tuple[float, float]] = {
-    "bottle": (layout.BOTTLE_RADIUS, layout.BOTTLE_MOUTH_Z + layout.STOPPER_HEIGHT),
-    "glass": (layout.GLASS_RADIUS, layout.GLASS_HEIGHT),
+    o: (catalogue.radius(o), catalogue.height(o) + (layout.STOPPER_HEIGHT if catalogue.BY_NAME[o].parts else 0.0))
+    for o in catalogue.TASK_OBJECTS
 }
 #: where an obstacle that stands for nothing is kept (world z, m)
 OBSTACLE_AWAY_Z = -10.0

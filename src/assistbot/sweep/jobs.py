@@ -16,6 +16,7 @@ import json
 from dataclasses import dataclass, field
 from typing import Any
 
+from assistbot import catalogue
 from assistbot.errors import UserError
 from assistbot.sweep.spec import SweepSpec
 
@@ -47,8 +48,8 @@ def scenario_sha(data: dict[str, Any]) -> str:
 def _objects_mapping(scenario) -> dict[str, dict[str, Any]]:
     arr = scenario.objects
     out = {}
-    for name in ("bottle", "glass"):
-        p = getattr(arr, name)
+    for name in catalogue.TASK_OBJECTS:
+        p = arr.placement(name)
         entry: dict[str, Any] = {"zone": p.zone, "state": p.state}
         if p.position is not None:
             entry["position"] = [float(c) for c in p.position]

@@ -19,6 +19,7 @@ from collections import Counter, defaultdict
 from pathlib import Path
 from typing import Any
 
+from assistbot import catalogue
 from assistbot.errors import UserError
 from assistbot.sweep.results import param_columns, parse_value, read_rows
 from assistbot.sweep.stats import Cell
@@ -216,7 +217,7 @@ def _expect_section(rows: list[dict], factors: list[str], expect: str) -> list[s
 
 
 #: the swept paths that together name an arrangement (the task space's first axis)
-ARRANGEMENT_PATHS = ("objects.bottle.zone", "objects.bottle.state", "objects.glass.zone", "objects.glass.state")
+ARRANGEMENT_PATHS = tuple(f"objects.{o}.{k}" for o in catalogue.TASK_OBJECTS for k in ("zone", "state"))
 #: an overlap with the person deeper than this (m), or a spilled fraction at least this, is a failure
 #: of the episode even when the person drank
 TOUCH_LIMIT = 0.01
@@ -225,8 +226,7 @@ SPILL_LIMIT = 0.10
 
 def arrangement_of(row: dict) -> str:
     """'bottle HWS closed, glass RWS inverted' from a row's swept object paths (missing ones as '?')."""
-    v = [str(row.get(p, "?")) for p in ARRANGEMENT_PATHS]
-    return f"bottle {v[0]} {v[1]}, glass {v[2]} {v[3]}"
+    return ", ".join(f"{o} {row.get(f'objects.{o}.zone', '?')} {row.get(f'objects.{o}.state', '?')}" for o in catalogue.TASK_OBJECTS)
 
 
 def end_kind(row: dict) -> str:

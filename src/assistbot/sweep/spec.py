@@ -38,10 +38,11 @@ from typing import Any
 
 import yaml
 
+from assistbot import catalogue
 from assistbot.errors import UserError
 from assistbot.scenario import VISION_PARAMS, check_vision_value
 
-OBJECT_PATHS = tuple(f"objects.{o}.{k}" for o in ("bottle", "glass")
+OBJECT_PATHS = tuple(f"objects.{o}.{k}" for o in catalogue.TASK_OBJECTS
                      for k in ("position", "position.x", "position.y", "zone", "state"))
 #: paths that change the scenario itself rather than override a parameter: the partner's profile
 SCENARIO_PATHS = ("human.profile",)

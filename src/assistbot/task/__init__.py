@@ -1,6 +1,6 @@
 """assistbot.task: the drinking task as plain data (see `assistbot.task.drinking`).
 
-Imports nothing of the project. Cognition builds its connection tables from
+Imports nothing of the project but the object catalogue (`assistbot.catalogue`). Cognition builds its connection tables from
 these associations; the human model reacts to utterance tags; the robot
 realises `ROBOT_ACTIONS`.
 """
@@ -13,6 +13,7 @@ from assistbot.task.drinking import (
     AML_ITEMS,
     ASL_CHAINS,
     ASL_ITEMS,
+    DRINK_FRACTION,
     ERRORS,
     FAILURE_OF,
     FALLS,

@@ -19,16 +19,15 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 
+from assistbot import catalogue
+
 # ---------------------------------------------------------------------------------------------
 # Objects, states, zones
 # ---------------------------------------------------------------------------------------------
 
-#: object type -> its possible states ("empty" and "full" glasses are upright).
-OBJECT_STATES: dict[str, tuple[str, ...]] = {
-    "bottle": ("closed", "open"),
-    "glass": ("inverted", "empty", "full"),
-}
-OBJECTS: tuple[str, ...] = tuple(OBJECT_STATES)
+#: object type -> its possible states, the default first ("empty" and "full" glasses are upright): the catalogue's task objects
+OBJECT_STATES: dict[str, tuple[str, ...]] = catalogue.STATES
+OBJECTS: tuple[str, ...] = catalogue.TASK_OBJECTS
 #: HWS: the human's workspace, RWS: the robot's. The human never reaches into RWS, the robot never into HWS.
 ZONES: tuple[str, ...] = ("HWS", "RWS")
 #: who can hold an object
@@ -74,6 +73,9 @@ ACHIEVED_BY: dict[str, tuple[str, ...]] = {
 }
 #: the final goal, done by the human only
 FINAL_GOAL = "Drink"
+#: the share of the glass's liquid that must reach the person's mouth for the drink to count: the
+#: task's success, and so what the person drinks before she puts the glass down
+DRINK_FRACTION = 0.75
 
 # ---------------------------------------------------------------------------------------------
 # Observation layer (OL): the human's motor primitives, with the object they are directed at

@@ -17,6 +17,7 @@ from __future__ import annotations
 import cv2
 import numpy as np
 
+from assistbot.vision.segment import PARTS
 from assistbot.world.layout import TABLE_Z
 from assistbot.world.render import SEGMENT_LABELS
 
@@ -46,13 +47,14 @@ def hsv_boxes(pixels: np.ndarray, s_pad: int = 25, v_pad: int = 30, lo_pct: floa
 
 
 def calibrate(seed: int = 0, n_scenes: int = 18, progress=None) -> dict:
+    from assistbot.task import HAND_POSTURES
     from assistbot.vision.capture import StereoCapture
-    from assistbot.vision.scenes import POSTURES, SceneSampler, pose
+    from assistbot.vision.scenes import SceneSampler, pose
     from assistbot.world import PAPER_ARRANGEMENTS, build_world
 
     world = build_world(PAPER_ARRANGEMENTS["fig3"], seed)
     sampler = SceneSampler(seed, "calibrate")
-    samples: dict[str, list[np.ndarray]] = {p: [] for p in ("bottle", "stopper", "glass", "liquid", "skin", "shirt")}
+    samples: dict[str, list[np.ndarray]] = {p: [] for p in PARTS}
     full_glass: list[np.ndarray] = []
     frames = []
     cells: list[set] = []
@@ -60,7 +62,7 @@ def calibrate(seed: int = 0, n_scenes: int = 18, progress=None) -> dict:
     shoulder = world.model.body("human_r_upper_arm").id
     with StereoCapture(world.model) as cap:
         for i in range(n_scenes):
-            lab = pose(world, sampler.sample(POSTURES[i % len(POSTURES)]))
+            lab = pose(world, sampler.sample(HAND_POSTURES[i % len(HAND_POSTURES)]))
             f = cap.grab(world.data)
             segs = cap.segmentation(world.data)
             cells.append(_skin_cells(f.cams, segs, cap.depth(world.data)))

@@ -40,11 +40,11 @@ from dataclasses import dataclass, field
 import cv2
 import numpy as np
 
+from assistbot import catalogue
 from assistbot.vision import _kernels
 from assistbot.vision.body import RobotBody
 from assistbot.vision.camera import CameraModel, expected_boxes, on_plane, triangulate
 from assistbot.vision.segment import LABEL, Blob, ColourTable, blob_pixels, components_each, count_near, first_row_over, masked_saturation
-from assistbot.world import layout
 
 cv2.setNumThreads(1)   # per-frame work on small images: OpenCV's thread pool costs more than it saves
 
@@ -57,7 +57,7 @@ HELD_DIST = 0.16           # m: a lifted object whose axis (base to top) is this
 #: height of the silhouette's centroid above the base (m) of a lifted, upright object
 CENTROID_Z = {"bottle": 0.085, "glass": 0.05}
 #: object heights (m) for the expected silhouettes
-HEIGHT = {"bottle": 0.194, "glass": 0.10}   # the bottle without its (red) stopper
+HEIGHT = {n: catalogue.height(n) for n in catalogue.TASK_OBJECTS}   # the bottle without its (red) stopper
 CROP = {"glass": (16, 20), "hand": (24, 24)}   # template sizes (w, h)
 ON_TABLE_TOL = 0.03
 BASE_AGREE = 0.02          # m: a standing object's axis is where a camera that sees its base puts that base
@@ -83,7 +83,7 @@ _PART_LUT = {ps: np.isin(np.arange(256), ps).astype(np.uint8) for ps in ((_B,), 
 _SKIN_LUT = np.isin(np.arange(256), (_K,)).astype(np.uint8)
 _ANG = np.linspace(0, 2 * np.pi, 8, endpoint=False)
 #: an upright object's outline points (base and top rings) relative to its base centre
-_OUTLINE = {n: np.vstack([np.column_stack([layout.OBJECT_RADIUS[n] * np.cos(_ANG), layout.OBJECT_RADIUS[n] * np.sin(_ANG), np.full(8, z)])
+_OUTLINE = {n: np.vstack([np.column_stack([catalogue.radius(n) * np.cos(_ANG), catalogue.radius(n) * np.sin(_ANG), np.full(8, z)])
                           for z in (0.0, HEIGHT[n])]) for n in HEIGHT}
 
 
@@ -380,7 +380,7 @@ class Detector:
         # the blobs of each part in each camera (a right-image part only where the left has one to pair with)
         found, views = components_each(masks, ("bottle", "glass", "skin"), (2, 2, 6), pairs_only=True, views_of=(2,), boxes=boxes)
         blobs = [{"bottle": f[0], "glass": f[1], "skin": (f[2], v[2])} for f, v in zip(found, views)]
-        for name in ("bottle", "glass"):
+        for name in catalogue.TASK_OBJECTS:
             det.objects[name] = self._object(name, blobs, imgs, cams, body)
         det.hand = self._hand(blobs, lab, imgs, cams, det, body)
         for o in det.objects.values():
@@ -420,7 +420,7 @@ class Detector:
                 r.cap(_S)
             rois.append(r)
         Xb, Xt = triangulate(cams[0], cams[1], np.array([rois[0].bottom, rois[0].top]), np.array([rois[1].bottom, rois[1].top]))
-        r_obj = layout.OBJECT_RADIUS[name]
+        r_obj = catalogue.radius(name)
         on_table = abs(Xb[2]) < ON_TABLE_TOL
         bases = [_rim_to_axis(cam, roi.bottom, 0.0, r_obj) for cam, roi in zip(cams, rois)]
         axis = None if on_table else _axis_xy(cams, rois)
@@ -596,7 +596,7 @@ class Detector:
         d = Xd - Xr
         d = d / max(1e-6, math.sqrt(d.dot(d)))     # np.linalg.norm(d)
         rel = []
-        for o in (det.objects["bottle"], det.objects["glass"]):
+        for o in (det.objects[n] for n in catalogue.TASK_OBJECTS):
             if o.position is None:
                 rel += [0.5, 0.0, 0.0, 0.0]
                 continue

@@ -10,6 +10,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from assistbot import catalogue
 from assistbot.vision.library import KINDS
 from assistbot.vision.pipeline import LOW_CONFIDENCE
 
@@ -22,7 +23,7 @@ class Score:
     pos_err: list[float] = field(default_factory=list)
     pos_err_lifted: list[float] = field(default_factory=list)    # objects off the table (in a hand)
     hand_err: list[float] = field(default_factory=list)
-    low_conf: dict[str, list[bool]] = field(default_factory=lambda: {"bottle": [], "glass": []})   # correct?
+    low_conf: dict[str, list[bool]] = field(default_factory=lambda: {o: [] for o in catalogue.TASK_OBJECTS})   # correct?
     unseen: dict[str, int] = field(default_factory=lambda: {k: 0 for k in KINDS})
     render_ms: list[float] = field(default_factory=list)
     process_ms: list[float] = field(default_factory=list)
@@ -32,7 +33,7 @@ class Score:
 
     def add(self, percept, labels, visible: dict[str, bool]) -> None:
         self.frames += 1
-        for o in ("bottle", "glass"):
+        for o in catalogue.TASK_OBJECTS:
             if not visible[o]:
                 continue
             op = percept.objects[o]
@@ -155,8 +156,8 @@ def visibility(segs, cams=None, hand=None, min_px: int = 25, hand_px: int = 25) 
     from assistbot.world.render import SEGMENT_LABELS
     inv = {v: k for k, v in SEGMENT_LABELS.items()}
     vis = {}
-    for name, lab in (("bottle", "bottle"), ("glass", "glass")):
-        vis[name] = all(int(np.count_nonzero(s == inv[lab])) >= min_px for s in segs)
+    for name in catalogue.TASK_OBJECTS:
+        vis[name] = all(int(np.count_nonzero(s == inv[name])) >= min_px for s in segs)
     vis["hand"] = True
     if cams is not None and hand is not None:
         for s, cam in zip(segs, cams):

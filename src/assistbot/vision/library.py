@@ -18,12 +18,14 @@ from pathlib import Path
 import cv2
 import numpy as np
 
+from assistbot import catalogue
 from assistbot.errors import UserError
 from assistbot.resources import TEMPLATES
+from assistbot.task import HAND_POSTURES
 
 PROTOTYPES = 2
-KINDS = {"bottle": ("closed", "open"), "glass": ("inverted", "empty", "full"),
-         "hand": ("none", "reach", "grasp_ag", "grasp_sg", "open_palm_request", "pointing", "remove_stopper", "pour", "drink")}
+#: what is classified, and its classes: each task object's states, the hand's postures
+KINDS = {**catalogue.STATES, "hand": HAND_POSTURES}
 K_NEIGHBOURS = 5
 
 

@@ -22,13 +22,14 @@ from dataclasses import dataclass
 import cv2
 import numpy as np
 
+from assistbot import catalogue
 from assistbot.cognition.percept import STANDING_Z, HandPercept, ObjectPercept, Percept, away_from_hand
 from assistbot.resources import TEMPLATES
 from assistbot.task import OBJECT_STATES
 from assistbot.vision import library
 from assistbot.vision.capture import StereoFrame
 from assistbot.vision.detect import HELD_DIST, MAX_TILT, Detections, Detector, axis_distance
-from assistbot.world.layout import HANDOVER_ZONE_X, OBJECT_HEIGHT, zone_of
+from assistbot.world.layout import HANDOVER_ZONE_X, zone_of
 
 HELD_OUT_Z = 0.14           # m above the table: a hand in the hand-over zone this high is raised toward the robot
 IN_HAND_XY = 0.10           # a grasping hand this close (m, horizontally) to an object holds it ...
@@ -105,14 +106,14 @@ class Vision:
         t0, c0 = time.perf_counter(), time.process_time()
         p = Percept(t=frame.t)
         if frame.dropped or frame.left is None:
-            for o in ("bottle", "glass"):
+            for o in catalogue.TASK_OBJECTS:
                 p.objects[o] = _unseen(o)
             p.hand = HandPercept(seen=False, confidence=0.0)
             self.last = None
             return p
         det = self.detector(frame.left, frame.right, frame.cams, frame.body)
         self.last = det
-        for name in ("bottle", "glass"):
+        for name in catalogue.TASK_OBJECTS:
             d = det.objects[name]
             if not d.visible and not (robot_holding == name and _in_robot_hand(d, robot_tcp)):
                 op = _unseen(name)
@@ -185,7 +186,7 @@ class Vision:
             # like (the robot's open hand next to it, asking for it, hides or extends the skin, and the
             # library's scenes have no robot hand there): from above if the hand's end is over its top
             o = min(lifted_near, key=lambda o: _norm(np.asarray(o.position[:2]) - h.position[:2]))
-            above = h.position[2] > o.position[2] + OBJECT_HEIGHT[o.type] - AT_TOP
+            above = h.position[2] > o.position[2] + catalogue.height(o.type) - AT_TOP
             c = hand.classes.index("grasp_ag" if above else "grasp_sg")
             pr[c] = max(float(pr[c]), o.confidence)   # as sure as the object is seen in it
         posture, conf = hand.classes[c], float(pr[c])
@@ -283,9 +284,10 @@ class Vision:
 # ---------------------------------------------------------------------------- building the library
 def build_library(seed: int = 0, n_scenes: int = 3240, root=None, progress=None) -> list:
     """Calibrate, render library scenes, and write prototypes + examples to assets/templates/."""
+    from assistbot.task import HAND_POSTURES
     from assistbot.vision.calibration import calibrate
     from assistbot.vision.capture import StereoCapture
-    from assistbot.vision.scenes import POSTURES, SceneSampler, pose
+    from assistbot.vision.scenes import SceneSampler, pose
     from assistbot.world import PAPER_ARRANGEMENTS, build_world
 
     cal = calibrate(seed)
@@ -295,7 +297,7 @@ def build_library(seed: int = 0, n_scenes: int = 3240, root=None, progress=None)
     def frames():
         with StereoCapture(world.model) as cap:
             for i in range(n_scenes):
-                lab = pose(world, sampler.sample(POSTURES[i % len(POSTURES)]))
+                lab = pose(world, sampler.sample(HAND_POSTURES[i % len(HAND_POSTURES)]))
                 yield cap.grab(world.data), lab
                 if progress:
                     progress(i + 1, n_scenes)
@@ -317,7 +319,7 @@ def fit_library(cal: dict, frames, seed: int = 0) -> tuple[dict, dict]:
     offsets: dict[str, list[np.ndarray]] = {}
     for f, lab in frames:
         d = det(f.left, f.right, f.cams, f.body)
-        for name in ("bottle", "glass"):
+        for name in catalogue.TASK_OBJECTS:
             o = d.objects[name]
             if o.visible:
                 data[name][0].append(o.crop)

@@ -20,15 +20,16 @@ from dataclasses import dataclass, field
 import mujoco
 import numpy as np
 
+from assistbot import catalogue
 from assistbot.human.arm import ORIENT, SHOULDER_XY, grip_orientation, rot_y, rot_z
 from assistbot.human.behaviours import GRASP_HEIGHT, HOLD_OUT, REST, TURN_LIFT, turn_roll
-from assistbot.world import HAND_POSTURES, HUMAN_ARM_JOINTS, HUMAN_HAND_JOINTS, layout
+from assistbot.task import HAND_POSTURES
+from assistbot.world import HAND_POSTURES as FINGER_POSTURES, HUMAN_ARM_JOINTS, HUMAN_HAND_JOINTS, layout
 from assistbot.world.arrangement import Arrangement, Placement
 from assistbot.world.scripted import ik
 
-POSTURES = ("none", "reach", "grasp_ag", "grasp_sg", "open_palm_request", "pointing", "remove_stopper", "pour", "drink")
 _PURPOSE = {"library": 1, "test": 2, "bench": 3, "calibrate": 4}
-#: finger posture (world.HAND_POSTURES) per perceived hand posture
+#: finger posture (world.HAND_POSTURES) per perceived hand posture (task.HAND_POSTURES)
 _FINGERS = {"none": "open", "reach": "open", "grasp_ag": "ag", "grasp_sg": "sg", "open_palm_request": "request", "pointing": "point",
             "remove_stopper": "ag", "pour": "sg", "drink": "sg"}
 HAND_X_MAX = -0.03          # the human's grasp site never goes further toward the robot
@@ -60,7 +61,7 @@ class Labels:
 
 
 def _random_position(rng, name: str, zone: str) -> tuple[float, float]:
-    r = layout.OBJECT_RADIUS[name]
+    r = catalogue.radius(name)
     xmax = layout.TABLE_HALF_X - r - layout.EDGE_MARGIN - 0.05
     inner = r + layout.MIDLINE_MARGIN + 0.03
     x = rng.uniform(inner, xmax - 0.02)
@@ -77,39 +78,38 @@ class SceneSampler:
     def arrangement(self) -> Arrangement:
         rng = self.rng
         for _ in range(200):
-            bz, gz = rng.choice(layout.ZONES), rng.choice(layout.ZONES)
-            arr = Arrangement(
-                Placement(str(bz), str(rng.choice(layout.BOTTLE_STATES)), _random_position(rng, "bottle", str(bz))),
-                Placement(str(gz), str(rng.choice(layout.GLASS_STATES)), _random_position(rng, "glass", str(gz))))
+            zones = {o: str(rng.choice(layout.ZONES)) for o in catalogue.TASK_OBJECTS}
+            arr = Arrangement(**{o: Placement(z, str(rng.choice(catalogue.STATES[o])), _random_position(rng, o, z))
+                                 for o, z in zones.items()})
             try:
                 arr.validate()
             except Exception:  # noqa: BLE001 - overlapping draw: draw again
                 continue
             stopper = np.array(layout.STOPPER_PARK)
-            if min(np.linalg.norm(np.array(arr.position(o)) - stopper) for o in ("bottle", "glass")) < 0.12:
+            if min(np.linalg.norm(np.array(arr.position(o)) - stopper) for o in catalogue.TASK_OBJECTS) < 0.12:
                 continue  # keep the removed stopper's place clear of the objects
             return arr
         raise RuntimeError("could not draw a valid arrangement")
 
     def sample(self, posture: str | None = None) -> SceneSpec:
         rng = self.rng
-        posture = posture or str(rng.choice(POSTURES))
+        posture = posture or str(rng.choice(HAND_POSTURES))
         if posture in ("remove_stopper", "pour", "drink"):
             return self._object_action(posture)
         arr = self.arrangement()
         head = (float(rng.uniform(-0.2, 0.2)), float(rng.uniform(0.65, 0.85)))
-        hws = [o for o in ("bottle", "glass") if getattr(arr, o).zone == "HWS"]
+        hws = [o for o in catalogue.TASK_OBJECTS if arr.placement(o).zone == "HWS"]
         target, variant = None, "table"
         if posture in ("reach", "grasp_ag", "grasp_sg"):
             if not hws:   # the human reaches only into the HWS: move one object there
-                o = str(rng.choice(["bottle", "glass"]))
+                o = str(rng.choice(catalogue.TASK_OBJECTS))
                 return self._with_object_in_hws(arr, o, head, posture)
             target = str(rng.choice(hws))
         if posture in ("grasp_ag", "grasp_sg"):
-            st = getattr(arr, target).state
+            st = arr.placement(target).state
             variant = str(rng.choice(["table", "lifted", "held_out"])) if st != "inverted" else _inverted_grip(rng, posture)
         if posture == "pointing":
-            target = str(rng.choice(["bottle", "glass"]))
+            target = str(rng.choice(catalogue.TASK_OBJECTS))
         if posture == "none":   # resting where the behaviours put the hand, or where a seated person starts
             variant = str(rng.choice(["rest", "home"]))
         jitter = tuple(float(v) for v in rng.uniform(-0.03, 0.03, 3))
@@ -151,9 +151,9 @@ class SceneSampler:
 
     def _with_object_in_hws(self, arr: Arrangement, o: str, head, posture: str) -> SceneSpec:
         for _ in range(50):
-            p = getattr(arr, o)
+            p = arr.placement(o)
             moved = Placement("HWS", p.state, _random_position(self.rng, o, "HWS"))
-            new = Arrangement(moved, arr.glass) if o == "bottle" else Arrangement(arr.bottle, moved)
+            new = Arrangement(**{n: moved if n == o else arr.placement(n) for n in catalogue.TASK_OBJECTS})
             try:
                 new.validate()
                 break
@@ -161,7 +161,7 @@ class SceneSampler:
                 continue
         else:
             raise RuntimeError("could not place an object in the HWS")
-        st = getattr(new, o).state
+        st = new.placement(o).state
         variant = "table"
         if posture.startswith("grasp"):
             variant = str(self.rng.choice(["table", "lifted", "held_out"])) if st != "inverted" else _inverted_grip(self.rng, posture)
@@ -225,7 +225,7 @@ def _set_arm(world, target, R) -> None:
 
 
 def _set_fingers(world, posture: str) -> None:
-    for j, v in zip(HUMAN_HAND_JOINTS, HAND_POSTURES[posture]):
+    for j, v in zip(HUMAN_HAND_JOINTS, FINGER_POSTURES[posture]):
         world.data.qpos[_qadr(world, j)] = v
 
 
@@ -259,10 +259,10 @@ def pose(world, spec: SceneSpec) -> Labels:
             _move_free(world, o, base)
             mujoco.mj_kinematics(m, d)
         h = GRASP_HEIGHT[(o, grip)]
-        target = base + np.array([0, 0, h if upright else layout.GLASS_HEIGHT - h])
+        target = base + np.array([0, 0, h if upright else catalogue.height("glass") - h])
         R = grip_orientation(grip, target)
         if grip == "sg":
-            target = target - 0.8 * layout.OBJECT_RADIUS[o] * R[:, 2] * 0  # grasp site at the object's axis
+            target = target - 0.8 * catalogue.radius(o) * R[:, 2] * 0  # grasp site at the object's axis
         if spec.variant == "turning":
             target, R = _turn(world, o, target, R, spec.reach_fraction)
         _set_arm(world, target, R)
@@ -349,8 +349,8 @@ def _pose_pour(world, spec: SceneSpec) -> None:
     k = np.cross([0, 0, 1.0], a)
     K = np.array([[0, -k[2], k[1]], [k[2], 0, -k[0]], [-k[1], k[0], 0]])
     Rt = np.eye(3) + np.sin(theta) * K + (1 - np.cos(theta)) * K @ K
-    mouth = g + np.array([0, 0, layout.GLASS_HEIGHT + 0.03]) + 0.5 * jit
-    base = mouth - Rt @ np.array([0, 0, 0.194])
+    mouth = g + np.array([0, 0, catalogue.height("glass") + 0.03]) + 0.5 * jit
+    base = mouth - Rt @ np.array([0, 0, catalogue.height("bottle")])
     h = GRASP_HEIGHT[("bottle", "sg")]
     R0 = rot_z(float(np.arctan2(b[1], b[0]))) @ ORIENT["sg"]
     _set_arm(world, base + Rt @ np.array([0, 0, h]), Rt @ R0)
@@ -366,7 +366,7 @@ def _pose_drink(world, spec: SceneSpec) -> None:
     Rc = rot_z(0.75) @ ORIENT["sg"]
     Rg = rot_y(-tilt)
     h = GRASP_HEIGHT[("glass", "sg")]
-    lip = np.array([0, 0, layout.GLASS_HEIGHT - h]) + np.array([-layout.GLASS_INNER_RADIUS, 0, 0])
+    lip = np.array([0, 0, catalogue.height("glass") - h]) + np.array([-layout.GLASS_INNER_RADIUS, 0, 0])
     away = 0.04 * (1 + jit[0] / 0.03)
     p = mouth + np.array([0.015 + away, jit[1], -0.015 - 0.5 * away]) - Rg @ lip
     _set_arm(world, p, Rg @ Rc)
@@ -398,14 +398,14 @@ def _robot_hold(world, o: str) -> None:
 def labels_of(world, spec: SceneSpec, in_hand: str | None, held_out: bool) -> Labels:
     st = world.state()
     lab = Labels(posture=spec.posture, object_in_hand=in_hand, held_out=held_out)
-    for o in ("bottle", "glass"):
+    for o in catalogue.TASK_OBJECTS:
         os_ = st.objects[o]
         p = np.array(os_.pos)
         p[2] -= layout.TABLE_Z
-        if os_.inverted:     # the base it stands on is the rim side: GLASS_HEIGHT below the body origin
-            p[2] -= layout.GLASS_HEIGHT
+        if os_.inverted:     # the base it stands on is the rim side: the glass's height below the body origin
+            p[2] -= catalogue.height("glass")
         # WorldState's words: a glass rolled past 45 deg from upside down (mid-turn) is no longer "inverted"
-        state = st.bottle_state if o == "bottle" else st.glass_state
+        state = st.state_of(o)
         held = "human" if in_hand == o else ("robot" if spec.robot_holds == o else None)
         zone = "RWS" if held == "robot" else ("HWS" if held == "human" and not held_out else layout.zone_of(p[0]))
         lab.objects[o] = {"state": state, "zone": zone, "position": tuple(float(v) for v in p), "held_by": held}

@@ -1,4 +1,4 @@
-"""A scenario's arrangement of the objects: zone, state and place of bottle and glass."""
+"""A scenario's arrangement of the objects: zone, state and place of each task object."""
 
 from __future__ import annotations
 
@@ -6,10 +6,9 @@ import itertools
 from dataclasses import dataclass
 from typing import Any, Mapping
 
+from assistbot import catalogue
 from assistbot.errors import UserError
 from assistbot.world import layout
-
-_STATES = {"bottle": layout.BOTTLE_STATES, "glass": layout.GLASS_STATES}
 
 
 @dataclass(frozen=True)
@@ -21,60 +20,81 @@ class Placement:
     position: tuple[float, float] | None = None
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, init=False)
 class Arrangement:
-    """Where the bottle and the glass stand and in which state.
+    """Where each task object (`catalogue.TASK_OBJECTS`) stands and in which state.
 
-    bottle.state is "closed" or "open"; glass.state is "inverted", "empty" or "full" (full:
-    the liquid starts in the glass, otherwise it is in the bottle).  Positions are table
-    coordinates; None means the zone's default place (`layout.DEFAULT_POSITIONS`).
+    Build it with one placement per task object, by position in catalogue order or by name
+    (``Arrangement(bottle=..., glass=...)``). The states are the catalogue's (a full glass: the
+    liquid starts in the glass, otherwise it is in the bottle).  Positions are table
+    coordinates; None means the zone's default place (the catalogue entry's `places`).
     """
 
-    bottle: Placement
-    glass: Placement
+    placements: tuple[Placement, ...]   # one per task object, in catalogue order
+
+    def __init__(self, *placements: Placement, **by_name: Placement) -> None:
+        names = catalogue.TASK_OBJECTS
+        given = {**dict(zip(names, placements)), **by_name}
+        if len(placements) > len(names) or sorted(given) != sorted(names):
+            raise TypeError(f"an arrangement places {', '.join(names)}, one each; got {', '.join(given) or 'nothing'}")
+        object.__setattr__(self, "placements", tuple(given[n] for n in names))
+
+    def placement(self, name: str) -> Placement:
+        return self.placements[catalogue.TASK_OBJECTS.index(name)]
+
+    @property
+    def bottle(self) -> Placement:
+        return self.placement("bottle")
+
+    @property
+    def glass(self) -> Placement:
+        return self.placement("glass")
 
     def validate(self, where: str = "arrangement") -> "Arrangement":
         """Raise UserError naming the key of the first mistake; return self when fine."""
-        for name in ("bottle", "glass"):
-            p: Placement = getattr(self, name)
+        for name in catalogue.TASK_OBJECTS:
+            p = self.placement(name)
             key = f"objects.{name}"
+            states = catalogue.STATES[name]
             if p.zone not in layout.ZONES:
                 raise UserError(where, f"{key}.zone", f"unknown zone {p.zone!r}; use one of {', '.join(layout.ZONES)}")
-            if p.state not in _STATES[name]:
-                raise UserError(where, f"{key}.state", f"unknown state {p.state!r}; use one of {', '.join(_STATES[name])}")
+            if p.state not in states:
+                raise UserError(where, f"{key}.state", f"unknown state {p.state!r}; use one of {', '.join(states)}")
             if p.position is not None:
                 _check_position(where, f"{key}.position", name, p.zone, p.position)
-        places = {"bottle": self.position("bottle"), "glass": self.position("glass")}
+        places = {name: self.position(name) for name in catalogue.TASK_OBJECTS}
         if self.bottle.state == "open":
             places["stopper"] = layout.STOPPER_PARK
         names = list(places)
         for a, b in itertools.combinations(names, 2):
             (xa, ya), (xb, yb) = places[a], places[b]
-            gap = ((xa - xb) ** 2 + (ya - yb) ** 2) ** 0.5 - layout.OBJECT_RADIUS[a] - layout.OBJECT_RADIUS[b]
+            gap = ((xa - xb) ** 2 + (ya - yb) ** 2) ** 0.5 - catalogue.radius(a) - catalogue.radius(b)
             if gap < 0.02:
-                key = f"objects.{'glass' if 'glass' in (a, b) else 'bottle'}.position"
+                blamed = [n for n in (a, b) if n in catalogue.TASK_OBJECTS][-1]   # the later task object of the pair
                 what = "the removed stopper's place" if "stopper" in (a, b) else f"the {a}"
-                raise UserError(where, key, f"{b if b != 'stopper' else a} overlaps {what} (need 2 cm between them)")
+                who = b if b != "stopper" else a
+                raise UserError(where, f"objects.{blamed}.position", f"{who} overlaps {what} (need 2 cm between them)")
         return self
 
     def position(self, name: str) -> tuple[float, float]:
-        """The table (x, y) of "bottle" or "glass": explicit or the zone's default."""
-        p: Placement = getattr(self, name)
-        return tuple(p.position) if p.position is not None else layout.DEFAULT_POSITIONS[(name, p.zone)]  # type: ignore[return-value]
+        """The table (x, y) of a task object: explicit or the zone's default."""
+        p = self.placement(name)
+        return tuple(p.position) if p.position is not None else catalogue.BY_NAME[name].places[p.zone]  # type: ignore[return-value]
 
     def label(self) -> str:
-        return f"bottle-{self.bottle.zone}-{self.bottle.state}_glass-{self.glass.zone}-{self.glass.state}"
+        return "_".join(f"{n}-{p.zone}-{p.state}" for n, p in zip(catalogue.TASK_OBJECTS, self.placements))
 
     @classmethod
     def from_mapping(cls, mapping: Any, where: str = "arrangement") -> "Arrangement":
         """Build from a scenario's ``objects:`` mapping (``{bottle: {zone, state, position?}, glass: {...}}``)."""
+        names = catalogue.TASK_OBJECTS
         if not isinstance(mapping, Mapping):
-            raise UserError(where, "objects", "must be a mapping with the keys bottle and glass")
-        unknown = sorted(set(mapping) - {"bottle", "glass"})
+            raise UserError(where, "objects", f"must be a mapping with the keys {' and '.join(names)}")
+        unknown = sorted(set(mapping) - set(names))
         if unknown:
-            raise UserError(where, f"objects.{unknown[0]}", "unknown object; the scene has a bottle and a glass")
+            raise UserError(where, f"objects.{unknown[0]}", f"unknown object; the scene has {' and '.join(f'a {n}' for n in names)}")
         parts = {}
-        for name in ("bottle", "glass"):
+        for name in names:
             key = f"objects.{name}"
             entry = mapping.get(name)
             if not isinstance(entry, Mapping):
@@ -92,10 +112,11 @@ class Arrangement:
         return cls(**parts).validate(where)
 
     @classmethod
-    def from_options(cls, bottle: str, glass: str, where: str = "arguments") -> "Arrangement":
-        """Build from command-line strings ``ZONE:STATE[@x,y]``, e.g. ``HWS:closed`` or ``RWS:empty@0.2,-0.1``."""
+    def from_options(cls, *texts: str, where: str = "arguments") -> "Arrangement":
+        """Build from command-line strings ``ZONE:STATE[@x,y]``, one per task object in catalogue order,
+        e.g. ``HWS:closed`` or ``RWS:empty@0.2,-0.1``."""
         parts = {}
-        for name, text in (("bottle", bottle), ("glass", glass)):
+        for name, text in zip(catalogue.TASK_OBJECTS, texts, strict=True):
             spec, _, at = str(text).partition("@")
             zone, sep, state = spec.partition(":")
             if not sep:
@@ -119,7 +140,7 @@ def _parse_position(where: str, key: str, value: Any) -> tuple[float, float]:
 
 def _check_position(where: str, key: str, name: str, zone: str, pos: tuple[float, float]) -> None:
     x, y = pos
-    r = layout.OBJECT_RADIUS[name]
+    r = catalogue.radius(name)
     xmax, ymax = layout.TABLE_HALF_X - r - layout.EDGE_MARGIN, layout.TABLE_HALF_Y - r - layout.EDGE_MARGIN
     if not (-xmax <= x <= xmax and -ymax <= y <= ymax):
         raise UserError(where, key, f"({x:g}, {y:g}) is off the table; x must be within ±{xmax:.3f} and y within ±{ymax:.3f} m")
@@ -131,11 +152,9 @@ def _check_position(where: str, key: str, name: str, zone: str, pos: tuple[float
 
 
 def all_arrangements() -> list[Arrangement]:
-    """The 24 arrangements: bottle zone x state, glass zone x state, at default places."""
-    return [
-        Arrangement(Placement(bz, bs), Placement(gz, gs))
-        for bz, bs, gz, gs in itertools.product(layout.ZONES, layout.BOTTLE_STATES, layout.ZONES, layout.GLASS_STATES)
-    ]
+    """Every arrangement at default places: each task object's zone x state (24 for bottle and glass)."""
+    each = [[Placement(z, s) for z in layout.ZONES for s in catalogue.STATES[o]] for o in catalogue.TASK_OBJECTS]
+    return [Arrangement(*ps) for ps in itertools.product(*each)]
 
 
 #: The seed paper's arrangements (section IV): name -> arrangement.

@@ -4,20 +4,23 @@ from __future__ import annotations
 
 from pathlib import Path
 
+from assistbot import catalogue
 from assistbot.errors import UserError
 from assistbot.world.arrangement import Arrangement
 
 
 def add_arrangement_arguments(parser) -> None:
     parser.add_argument("scenario", nargs="?", help="scenario YAML file whose objects: mapping gives the arrangement")
-    parser.add_argument("--bottle", metavar="ZONE:STATE[@x,y]", help="bottle, e.g. HWS:closed (states closed, open)")
-    parser.add_argument("--glass", metavar="ZONE:STATE[@x,y]", help="glass, e.g. RWS:inverted (states inverted, empty, full)")
+    for name, states in catalogue.STATES.items():
+        parser.add_argument(f"--{name}", metavar="ZONE:STATE[@x,y]", help=f"{name}, e.g. HWS:{states[0]} (states {', '.join(states)})")
 
 
 def arrangement_from_args(args, default: Arrangement | None = None) -> Arrangement | None:
+    options = [f"--{name}" for name in catalogue.TASK_OBJECTS]
+    given = [getattr(args, name) for name in catalogue.TASK_OBJECTS]
     if args.scenario:
-        if args.bottle or args.glass:
-            raise UserError("arguments", "--bottle/--glass", "give either a scenario file or options, not both")
+        if any(given):
+            raise UserError("arguments", "/".join(options), "give either a scenario file or options, not both")
         path = Path(args.scenario)
         if not path.is_file():
             raise UserError(str(path), "file", "not found")
@@ -30,10 +33,11 @@ def arrangement_from_args(args, default: Arrangement | None = None) -> Arrangeme
         if not isinstance(doc, dict) or "objects" not in doc:
             raise UserError(str(path), "objects", "missing; give objects: {bottle: {zone, state}, glass: {zone, state}}")
         return Arrangement.from_mapping(doc["objects"], str(path))
-    if args.bottle or args.glass:
-        if not (args.bottle and args.glass):
-            raise UserError("arguments", "--glass" if args.bottle else "--bottle", "give both --bottle and --glass")
-        return Arrangement.from_options(args.bottle, args.glass)
+    if any(given):
+        if not all(given):
+            missing = [o for o, g in zip(options, given) if not g]
+            raise UserError("arguments", missing[0], f"give all of {', '.join(options)}")
+        return Arrangement.from_options(*given)
     return default
 
 

@@ -1,9 +1,10 @@
-"""Numbers of the scene that Python needs: table, zones, object sizes, default places.
+"""Numbers of the scene that Python needs: table, zones, the containers' insides, default places.
 
 All positions are in table coordinates (see `assistbot.world`): metres, origin at the
 centre of the table top, x from the human toward the robot, y to the human's left, z up.
 The world frame is the same with z measured from the floor: world z = table z + TABLE_Z.
-They must agree with assets/mjcf/*.xml (tests check the important ones).
+They must agree with assets/mjcf/*.xml (tests check the important ones). The objects' outer
+sizes and grasp heights are read from the model itself (`assistbot.catalogue`).
 """
 
 from __future__ import annotations
@@ -19,19 +20,12 @@ EDGE_MARGIN = 0.02             # an object must stand this far inside the table 
 MIDLINE_MARGIN = 0.01          # ... and this far from the middle line, entirely in its half
 
 ZONES = ("HWS", "RWS")         # human's workspace x < 0, robot's workspace x > 0
-BOTTLE_STATES = ("closed", "open")
-GLASS_STATES = ("inverted", "empty", "full")
 
-BOTTLE_RADIUS = 0.035
 BOTTLE_INNER_RADIUS = 0.029
 BOTTLE_BASE_TOP = 0.006        # inner floor height in the bottle frame
-BOTTLE_MOUTH_Z = 0.194         # top of the neck (the stopper body's origin when closed)
 BOTTLE_BODY_TOP = 0.128        # top of the full-width body, where the shoulder starts
-GLASS_RADIUS = 0.040
 GLASS_INNER_RADIUS = 0.035
 GLASS_BASE_TOP = 0.008
-GLASS_HEIGHT = 0.100
-STOPPER_RADIUS = 0.019
 STOPPER_PLUG_DEPTH = 0.020     # the plug reaches this far below the stopper's origin
 STOPPER_HEIGHT = 0.016         # the cap above the neck when closed
 
@@ -43,19 +37,8 @@ N_PARTICLES = 40
 #: out to the person. The one definition for vision, the oracle and the person's eyes.
 HANDOVER_ZONE_X = (-0.15, 0.08)
 
-#: default places (table x, y) per object and zone
-DEFAULT_POSITIONS = {
-    ("bottle", "HWS"): (-0.22, -0.12),
-    ("glass", "HWS"): (-0.22, 0.12),
-    ("bottle", "RWS"): (0.20, 0.12),
-    ("glass", "RWS"): (0.20, -0.12),
-}
 #: where a removed stopper stands (in the HWS, at the human's left hand)
 STOPPER_PARK = (-0.30, 0.36)
-
-OBJECT_RADIUS = {"bottle": BOTTLE_RADIUS, "glass": GLASS_RADIUS, "stopper": STOPPER_RADIUS}
-#: base to top (m): the bottle's neck (without the stopper), the glass's rim
-OBJECT_HEIGHT = {"bottle": BOTTLE_MOUTH_Z, "glass": GLASS_HEIGHT}
 
 
 def zone_of(x: float) -> str:

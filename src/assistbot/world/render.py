@@ -25,6 +25,7 @@ from pathlib import Path
 import mujoco
 import numpy as np
 
+from assistbot import catalogue
 from assistbot.errors import UserError
 
 _BACKEND: str | None = None
@@ -275,7 +276,7 @@ def _geom_labels(model: mujoco.MjModel) -> np.ndarray:
         root = model.body(model.body_rootid[model.geom_bodyid[g]]).name
         if body.startswith("particle") or model.geom(g).name == "glass_visual_liquid":
             labels[g] = inv["liquid"]
-        elif body in ("bottle", "stopper", "glass", "table"):
+        elif body in catalogue.NAMES or body == "table":
             labels[g] = inv[body]
         elif root.startswith("robot"):
             labels[g] = inv["robot"]

@@ -9,6 +9,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from assistbot import catalogue
 from assistbot.world import layout
 
 FULL_FRACTION = 0.6   # a glass holding at least this share of the liquid is "full"
@@ -49,6 +50,10 @@ class WorldState:
     robot_holds: str | None
     human_holds: str | None
 
+    def state_of(self, name: str) -> str:
+        """A task object's state, in the catalogue's (and the arrangement's) words."""
+        return {"bottle": self.bottle_state, "glass": self.glass_state}[name]
+
     def summary(self) -> str:
         o = self.objects
         return (f"t={self.time:.2f}s bottle {o['bottle'].zone} {self.bottle_state}, glass {o['glass'].zone} {self.glass_state}, "
@@ -65,7 +70,7 @@ def in_cylinder(points: np.ndarray, pos: np.ndarray, R: np.ndarray, radius: floa
 def in_glass_region(world, pts: np.ndarray) -> np.ndarray:
     """Which of the points (world frame) lie inside the glass (its inner cylinder, rim included)."""
     d, gb = world.data, world.body_id["glass"]
-    return in_cylinder(pts, d.xpos[gb], d.xmat[gb].reshape(3, 3), layout.GLASS_INNER_RADIUS + 0.002, 0.0, layout.GLASS_HEIGHT + 0.005)
+    return in_cylinder(pts, d.xpos[gb], d.xmat[gb].reshape(3, 3), layout.GLASS_INNER_RADIUS + 0.002, 0.0, catalogue.height("glass") + 0.005)
 
 
 def standing_end(world, name: str) -> np.ndarray:
@@ -73,7 +78,7 @@ def standing_end(world, name: str) -> np.ndarray:
     (the body's origin is its base centre, and its axis then points down)."""
     d, b = world.data, world.body_id[name]
     pos, axis = d.xpos[b], d.xmat[b].reshape(3, 3)[:, 2]
-    return pos + layout.OBJECT_HEIGHT[name] * axis if (name in layout.OBJECT_HEIGHT and axis[2] < -0.707) else pos.copy()
+    return pos + catalogue.height(name) * axis if (name in catalogue.TASK_OBJECTS and axis[2] < -0.707) else pos.copy()
 
 
 def world_state(world) -> WorldState:
@@ -81,7 +86,7 @@ def world_state(world) -> WorldState:
     robot = world.robot_holding()
     human = world.human_holding()
     objects = {}
-    for name in ("bottle", "glass", "stopper"):
+    for name in catalogue.NAMES:
         b = world.body_id[name]
         pos = d.xpos[b].copy()
         axis_z = d.xmat[b].reshape(3, 3)[2, 2]
@@ -91,7 +96,7 @@ def world_state(world) -> WorldState:
     alive = ~world.drunk
     bb = world.body_id["bottle"]
     in_bottle = in_cylinder(pts, d.xpos[bb], d.xmat[bb].reshape(3, 3), layout.BOTTLE_INNER_RADIUS + 0.002, 0.0,
-                            layout.BOTTLE_MOUTH_Z + 0.005) & alive
+                            catalogue.height("bottle") + 0.005) & alive
     in_glass = in_glass_region(world, pts) & alive & ~in_bottle
     mouth = d.site_xpos[world.site_id["human_mouth"]]
     near_mouth = int(np.sum((np.linalg.norm(pts - mouth, axis=1) < 0.08) & alive))

@@ -22,6 +22,7 @@ from __future__ import annotations
 import mujoco
 import numpy as np
 
+from assistbot import catalogue
 from assistbot.errors import UserError
 from assistbot.world import layout
 from assistbot.world.arrangement import Arrangement
@@ -50,7 +51,8 @@ HUMAN_HAND_JOINTS = (
     "human_r_fingers_dist", "human_r_thumb_opp", "human_r_thumb_flex",
 )
 CAMERAS = ("scene_cam", "top_cam", "head_cam_left", "head_cam_right")
-OBJECTS = ("bottle", "glass", "stopper")
+#: the objects of the scene; the person's hand can hold each (its weld ``human_hold_<name>``)
+OBJECTS = catalogue.NAMES
 
 #: Finger targets (rad) of the human's hand postures, in HUMAN_HAND_JOINTS order.
 HAND_POSTURES: dict[str, tuple[float, ...]] = {
@@ -95,7 +97,7 @@ class World:
         self.arrangement = arrangement
         self.seed = int(seed)
         m = model
-        self.body_id = {n: m.body(n).id for n in ("bottle", "glass", "stopper", "human_r_hand", "robot_gripper")}
+        self.body_id = {n: m.body(n).id for n in (*OBJECTS, "human_r_hand", "robot_gripper")}
         self.eq_stopper = m.equality("stopper_fit").id
         self.eq_hold = {o: m.equality(f"human_hold_{o}").id for o in OBJECTS}
         self._eq_hold_ids = np.array(list(self.eq_hold.values()))
@@ -104,7 +106,7 @@ class World:
         self.particle_geoms = np.array([m.body_geomadr[b] for b in self.particle_bodies])
         self.particle_qadr = np.array([m.jnt_qposadr[m.body_jntadr[b]] for b in self.particle_bodies])
         self.particle_vadr = np.array([m.jnt_dofadr[m.body_jntadr[b]] for b in self.particle_bodies])
-        # geom -> object (0 bottle, 1 glass, 2 stopper, -1 other); geom -> gripper part (1..3 fingers, 4 palm, 0 none)
+        # geom -> object (its index in OBJECTS, -1 other); geom -> gripper part (1..3 fingers, 4 palm, 0 none)
         gb = m.geom_bodyid
         self.geom_object = np.full(m.ngeom, -1)
         for k, o in enumerate(OBJECTS):
@@ -132,20 +134,21 @@ class World:
             d.eq_active[self.eq_hold[o]] = 0
         arr = self.arrangement
         z = layout.TABLE_Z
+        for o in catalogue.TASK_OBJECTS:   # upright on the table, or upside down standing on its rim
+            x, y = arr.position(o)
+            if arr.placement(o).state == "inverted":
+                self._set_free(o, (x, y, z + catalogue.height(o)), _quat_x180())
+            else:
+                self._set_free(o, (x, y, z), (1, 0, 0, 0))
         bx, by = arr.position("bottle")
-        self._set_free("bottle", (bx, by, z), (1, 0, 0, 0))
         if arr.bottle.state == "closed":
-            self._set_free("stopper", (bx, by, z + layout.BOTTLE_MOUTH_Z), (1, 0, 0, 0))
+            self._set_free("stopper", (bx, by, z + catalogue.height("bottle")), (1, 0, 0, 0))
             d.eq_active[self.eq_stopper] = 1
         else:
             sx, sy = layout.STOPPER_PARK
             self._set_free("stopper", (sx, sy, z + layout.STOPPER_PLUG_DEPTH), (1, 0, 0, 0))
             d.eq_active[self.eq_stopper] = 0
         gx, gy = arr.position("glass")
-        if arr.glass.state == "inverted":
-            self._set_free("glass", (gx, gy, z + layout.GLASS_HEIGHT), _quat_x180())
-        else:
-            self._set_free("glass", (gx, gy, z), (1, 0, 0, 0))
         # liquid: one layer on the inner floor of its container (particles do not touch each other)
         rng = np.random.default_rng(self.seed)
         n = len(self.particle_bodies)
@@ -246,7 +249,7 @@ class World:
         m.geom_rgba[g, 3] = 1.0 if shown else 0.0
         r = layout.PARTICLE_RADIUS
         bb, gb = self.body_id["bottle"], self.body_id["glass"]
-        hidden = self.drunk | in_cylinder(pts, d.xpos[bb], d.xmat[bb].reshape(3, 3), layout.BOTTLE_RADIUS - r, r,
+        hidden = self.drunk | in_cylinder(pts, d.xpos[bb], d.xmat[bb].reshape(3, 3), catalogue.radius("bottle") - r, r,
                                           layout.BOTTLE_BODY_TOP - r)
         if shown:
             # resting particles sink a fraction of a millimetre into the glass's base
@@ -309,9 +312,8 @@ class World:
         pos, R = d.xpos[b], d.xmat[b].reshape(3, 3)
         local = R.T @ (p - pos)
         if obj == "stopper":
-            return float(np.linalg.norm(p - d.site_xpos[self.site_id["stopper_grasp"]]) - layout.STOPPER_RADIUS)
-        height = layout.BOTTLE_MOUTH_Z if obj == "bottle" else layout.GLASS_HEIGHT
-        radius = layout.BOTTLE_RADIUS if obj == "bottle" else layout.GLASS_RADIUS
+            return float(np.linalg.norm(p - d.site_xpos[self.site_id["stopper_grasp"]]) - catalogue.radius("stopper"))
+        height, radius = catalogue.height(obj), catalogue.radius(obj)
         if obj == "bottle" and local[2] > layout.BOTTLE_BODY_TOP:
             radius = 0.0165  # shoulder and neck
         radial = np.hypot(local[0], local[1]) - radius
@@ -366,7 +368,9 @@ class World:
         if n == 0:
             return None
         g1, g2 = d.contact.geom1[:n], d.contact.geom2[:n]
-        for k, o in enumerate(OBJECTS[:2]):
+        for k, o in enumerate(OBJECTS):
+            if o not in catalogue.TASK_OBJECTS:
+                continue
             parts = set()
             for a, b in ((g1, g2), (g2, g1)):
                 sel = self.geom_object[a] == k

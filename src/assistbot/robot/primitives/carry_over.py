@@ -7,13 +7,14 @@ from typing import TYPE_CHECKING, Callable
 import mink
 import numpy as np
 
+from assistbot import catalogue
 from assistbot.interfaces import Status
 from assistbot.robot import poses
 from assistbot.robot.phases import Move, Phase
 from assistbot.robot.placement import segment_distance
 from assistbot.robot.primitives.geometry import GRASP_HEIGHT, RADIUS
 from assistbot.task import OBJECTS
-from assistbot.world.layout import OBJECT_HEIGHT, STOPPER_HEIGHT, TABLE_Z
+from assistbot.world.layout import STOPPER_HEIGHT, TABLE_Z
 
 if TYPE_CHECKING:
     from assistbot.robot.primitives.base import Primitive
@@ -39,7 +40,7 @@ class CarryOver(Phase):
     def start(self, prim):
         self.moves: list[Move] = []
         obj = prim.object
-        if obj not in OBJECT_HEIGHT:
+        if obj not in catalogue.TASK_OBJECTS:
             return
         here = prim.robot.commanded_tcp_pose()
         goal = self.goal(prim)
@@ -52,7 +53,7 @@ class CarryOver(Phase):
                 continue
             d = float(segment_distance(np.asarray(xy, float), a[:2], b[:2]))
             if d < RADIUS[obj] + RADIUS[other] + CARRY_CLEARANCE:
-                top = TABLE_Z + OBJECT_HEIGHT[other] + (STOPPER_HEIGHT if other == "bottle" else 0.0)
+                top = TABLE_Z + catalogue.height(other) + (STOPPER_HEIGHT if other == "bottle" else 0.0)
                 need = max(need, top + CARRY_CLEARANCE + below)
         if need <= max(a[2], b[2]) - HIGH_ENOUGH_WITHIN:
             return

@@ -10,19 +10,22 @@ from typing import TYPE_CHECKING
 import mink
 import numpy as np
 
+from assistbot import catalogue
 from assistbot.robot import poses
 from assistbot.robot.controller import REACH
-from assistbot.world.layout import BOTTLE_BODY_TOP, OBJECT_HEIGHT, OBJECT_RADIUS, TABLE_Z
+from assistbot.world.layout import BOTTLE_BODY_TOP, TABLE_Z
 
 if TYPE_CHECKING:
     from assistbot.robot.gripper import Gripper
     from assistbot.robot.primitives.base import Primitive
 
 
-#: the height (m above its base) at which the hand grasps each object standing on the table
-GRASP_HEIGHT = {"glass": 0.05, "bottle": 0.08, "held_out": 0.06}
-#: the objects' radii (the MJCF's, through world.layout); "held_out": either, unseen which
-RADIUS = {**{o: OBJECT_RADIUS[o] for o in ("glass", "bottle")}, "held_out": (OBJECT_RADIUS["glass"] + OBJECT_RADIUS["bottle"]) / 2}
+#: the height (m above its base) at which the hand grasps each object standing on the table: its
+#: MJCF grasp site; "held_out": an object held out by the person, whichever it is
+GRASP_HEIGHT = {**{o: catalogue.grasp_height(o) for o in catalogue.TASK_OBJECTS}, "held_out": 0.06}
+#: the objects' radii (the MJCF's); "held_out": either, unseen which
+RADIUS = {**{o: catalogue.radius(o) for o in catalogue.TASK_OBJECTS},
+          "held_out": sum(catalogue.radius(o) for o in catalogue.TASK_OBJECTS) / len(catalogue.TASK_OBJECTS)}
 #: how far (m) beyond REACH a grasp point may lie and still be grasped, short of the hand's middle
 REACH_SLACK = 0.025
 #: such a grasp stops this far (m) inside REACH, backing along the approach, which counts as no more
@@ -36,7 +39,7 @@ TCP_CYLINDER_RADIUS = 0.035  # the TCP is the centre of a 70 mm cylinder touchin
 LIFT = 0.12
 #: the top of each object's side wall, where a side grasp's upper finger must stay below (m above the base):
 #: the glass's rim, the bottle's shoulder
-WALL_TOP = {"glass": OBJECT_HEIGHT["glass"], "bottle": BOTTLE_BODY_TOP}
+WALL_TOP = {"glass": catalogue.height("glass"), "bottle": BOTTLE_BODY_TOP}
 
 
 def held_grasp_height(obj: str, hand: "Gripper") -> float:

@@ -6,11 +6,12 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from assistbot import catalogue
 from assistbot.robot.controller import REACH, TCP_MIN_X
 from assistbot.robot.placement import put_down_spot
 from assistbot.robot.primitives.geometry import GRASP_HEIGHT, REACH_SLACK
 from assistbot.task import OBJECTS
-from assistbot.world.layout import OBJECT_HEIGHT, TABLE_Z
+from assistbot.world.layout import TABLE_Z
 
 if TYPE_CHECKING:
     from assistbot.robot.primitives.base import Primitive
@@ -41,7 +42,7 @@ def offer_point(prim: "Primitive") -> np.ndarray:
         if hand is None:
             c = np.array([HOLD_OUT_XY[0], HOLD_OUT_XY[1], TABLE_Z + HOLD_OUT_BASE + GRASP_HEIGHT[obj]])
         else:
-            base = float(np.clip(float(hand[2]) - 0.5 * OBJECT_HEIGHT[obj], *OFFER_BASE))
+            base = float(np.clip(float(hand[2]) - 0.5 * catalogue.height(obj), *OFFER_BASE))
             c = np.array([float(hand[0]), float(hand[1]), TABLE_Z + base + GRASP_HEIGHT[obj]])
         # out of reach: brought back toward the robot at the same height (a hand takes it where it was shown)
         sh, reach = prim.robot.shoulder, REACH - OFFER_REACH_MARGIN

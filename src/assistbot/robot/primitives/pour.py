@@ -7,6 +7,7 @@ import math
 import mink
 import numpy as np
 
+from assistbot import catalogue
 from assistbot.interfaces import Status
 from assistbot.robot import poses
 from assistbot.robot.phases import Move, RememberPlace, Roll, Wait
@@ -15,10 +16,10 @@ from assistbot.robot.primitives.geometry import GRASP_HEIGHT, LIFT, side_grasp_p
 from assistbot.robot.primitives.putting_down import put_down_at
 from assistbot.robot.primitives.reaching import reach_and_grasp_phases, retract_phases
 from assistbot.robot.progress import Progress
-from assistbot.world.layout import OBJECT_HEIGHT, TABLE_Z
+from assistbot.world.layout import TABLE_Z
 
 #: the bottle's mouth above its grasp point (m)
-BOTTLE_MOUTH_ABOVE_GRASP = OBJECT_HEIGHT["bottle"] - GRASP_HEIGHT["bottle"]
+BOTTLE_MOUTH_ABOVE_GRASP = catalogue.height("bottle") - GRASP_HEIGHT["bottle"]
 
 
 class Pour(Primitive):
@@ -60,7 +61,7 @@ class Pour(Primitive):
 
     def _pour_pose(self, tilt: float) -> mink.SE3:
         """TCP pose holding the bottle rolled by ``tilt`` with the mouth, at the full tilt, over the glass centre."""
-        mouth = np.array([self._glass[0], self._glass[1], TABLE_Z + OBJECT_HEIGHT["glass"] + self.MOUTH_ABOVE_RIM])
+        mouth = np.array([self._glass[0], self._glass[1], TABLE_Z + catalogue.height("glass") + self.MOUTH_ABOVE_RIM])
         rot0 = poses.side_rotation(mouth, self.robot.shoulder)
         rot_full = rot0 @ mink.SO3.from_x_radians(self.TILT)
         tcp = mouth - rot_full.as_matrix() @ np.array([0.0, 0.0, BOTTLE_MOUTH_ABOVE_GRASP])

@@ -11,6 +11,7 @@ from assistbot.robot import poses
 from assistbot.robot.phases import Move, Open, Rise, Wait
 from assistbot.robot.primitives.base import Primitive
 from assistbot.robot.primitives.reaching import retract_phases
+from assistbot.task import OBJECTS
 from assistbot.world.layout import TABLE_Z
 
 
@@ -50,7 +51,7 @@ class Request(Primitive):
         The arm is checked along the line from the shoulder to the hand, not just at the hand:
         a hand put on the far side of an object pulls the forearm across it."""
         y = float(np.clip(self.xy()[1], *self.Y_RANGE))
-        obstacles = [np.asarray(xy, float) for xy in (self.locate(n) for n in ("bottle", "glass")) if xy is not None and xy[0] > 0.0]
+        obstacles = [np.asarray(xy, float) for xy in (self.locate(n) for n in OBJECTS) if xy is not None and xy[0] > 0.0]
         shoulder = np.asarray(self.robot.shoulder[:2], float)
 
         def clear(c: float) -> bool:
