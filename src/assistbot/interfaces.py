@@ -24,6 +24,9 @@ if TYPE_CHECKING:
 
     from assistbot.cognition.percept import Decision, Percept, RobotPercept
 
+#: the control period (s): the loop ticks the actor and the partner, and advances the physics, by this much
+CONTROL_DT = 0.02
+
 
 class Status(str, enum.Enum):
     """How a thing that runs stands: not started, running, or ended one way or the other. A str, so that

@@ -40,7 +40,7 @@ class Scenario:
     objects: Any = None  # assistbot.world.Arrangement
     human: Any = None  # assistbot.human.script.HumanConfig
     overrides: dict[str, Any] = field(default_factory=dict)
-    agent: str = "dnf"   # assistbot.episode.builder.AGENTS, or package.module:factory
+    agent: str = "dnf"   # assistbot.agents.AGENTS, or package.module:factory
     raw: dict[str, Any] = field(default_factory=dict)
 
 
@@ -90,7 +90,7 @@ def parse_scenario(data: Any, path: Path | str | None = None) -> Scenario:
     agent = data.get("agent", "dnf")
     if not isinstance(agent, str):
         raise UserError(where, "agent", f"must be an agent's name or package.module:factory, got {agent!r}")
-    from assistbot.episode.builder import agent_factory
+    from assistbot.agents import agent_factory
     from assistbot.human.script import parse_human
     from assistbot.world import Arrangement
 

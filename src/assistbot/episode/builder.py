@@ -1,49 +1,22 @@
 """Makes an episode's parts from a scenario: the world, the perception, the agent, the actor, the partner, the task.
 
-The one place that names the concrete parts. The agent is chosen by the scenario's ``agent:`` key: a name
-from `AGENTS` (``dnf``: the seed's field architecture), or ``package.module:factory`` for an agent of one's
-own -- a callable taking ``(seed, overrides)`` (the scenario's ``cognition.*`` overrides, without the prefix)
-and returning an `assistbot.interfaces.Agent`.
+The one place that names the concrete parts. The agent is chosen by the scenario's ``agent:`` key
+(`assistbot.agents`: a word such as ``dnf``, or ``package.module:factory`` for an agent of one's own).
 """
 
 from __future__ import annotations
 
 import difflib
-import importlib
-from typing import Any, Callable
+from typing import Any
 
+from assistbot.agents import agent_factory
 from assistbot.episode.drinking_task import DrinkingTask
-from assistbot.episode.runner import CONTROL_DT, Episode
+from assistbot.episode.runner import Episode
 from assistbot.errors import UserError
-from assistbot.interfaces import Agent, Perception
+from assistbot.interfaces import CONTROL_DT, Perception
 from assistbot.scenario import VISION_PARAMS, Scenario, check_vision_value
 
 PERCEPTIONS = ("vision", "oracle")
-
-
-def _dnf_agent(seed: int, overrides: dict[str, Any]) -> Agent:
-    from assistbot.cognition import Cognition
-
-    return Cognition(overrides=overrides or None, seed=seed)
-
-
-#: the agents a scenario names by a word; ``module:factory`` names any other
-AGENTS: dict[str, Callable[[int, dict[str, Any]], Agent]] = {"dnf": _dnf_agent}
-
-
-def agent_factory(spec: str, where: str) -> Callable[[int, dict[str, Any]], Agent]:
-    """The factory for a scenario's ``agent:`` value; an unknown one is a `UserError` saying what is allowed."""
-    if spec in AGENTS:
-        return AGENTS[spec]
-    module, sep, attr = spec.partition(":")
-    if sep and module and attr:
-        try:
-            factory = getattr(importlib.import_module(module), attr)
-        except (ImportError, AttributeError) as exc:
-            raise UserError(where, "agent", f"cannot load {spec!r}: {exc}") from None
-        if callable(factory):
-            return factory
-    raise UserError(where, "agent", f"{spec!r}: use one of {', '.join(AGENTS)}, or package.module:factory")
 
 
 def split_overrides(overrides: dict[str, Any], where: str) -> tuple[dict, dict, dict]:

@@ -17,10 +17,9 @@ from dataclasses import dataclass, field
 from typing import Any, Callable
 
 from assistbot.cognition.percept import Decision, Percept
-from assistbot.interfaces import Actor, Agent, Partner, Perception, Status, Task
+from assistbot.interfaces import CONTROL_DT, Actor, Agent, Partner, Perception, Status, Task
 from assistbot.speech import SpeechLog
 
-CONTROL_DT = 0.02
 PERCEPTION_EVERY = 5  # control ticks: 10 Hz
 
 

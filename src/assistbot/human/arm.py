@@ -26,6 +26,7 @@ import numpy as np
 
 from assistbot.human.dls import bounded, dls_step, pose_at
 from assistbot.human.ikmodel import arm_model
+from assistbot.interfaces import CONTROL_DT
 from assistbot.world import HAND_POSTURES, HUMAN_ARM_JOINTS, HUMAN_HAND_JOINTS
 
 #: the hand-over zone reaches this far across the middle line (world/table x, m)
@@ -157,7 +158,7 @@ class HumanArm:
     max(MIN_DURATION, d / speed, rotation / ANGULAR_SPEED) seconds.
     """
 
-    def __init__(self, world, speed: float = 0.2, dt: float = 0.02) -> None:
+    def __init__(self, world, speed: float = 0.2, dt: float = CONTROL_DT) -> None:
         if speed <= 0:
             raise ValueError(f"speed must be > 0 m/s, got {speed}")
         self.world = world

@@ -29,7 +29,7 @@ from assistbot.human.behaviours import BEHAVIOURS, Behaviour
 from assistbot.human.perception import RobotView, see_robot
 from assistbot.human.profiles import PROFILES, Profile
 from assistbot.human.script import HumanConfig, Step
-from assistbot.interfaces import PartnerEvent as Event, PartnerView, Status
+from assistbot.interfaces import CONTROL_DT, PartnerEvent as Event, PartnerView, Status
 
 #: s between two looks at the robot (a person's eyes sample the scene ~10 times a second)
 LOOK_PERIOD = 0.1
@@ -44,7 +44,7 @@ def _key(resp: tuple[str, dict]) -> tuple:
 
 class HumanController:
     def __init__(self, world, profile: str | Profile = "active", seed: int = 0, config: HumanConfig | None = None,
-                 see: Callable[[object], RobotView] = see_robot, dt: float = 0.02) -> None:
+                 see: Callable[[object], RobotView] = see_robot, dt: float = CONTROL_DT) -> None:
         if config is not None:
             profile = config.profile
         self.profile = PROFILES[profile] if isinstance(profile, str) else profile

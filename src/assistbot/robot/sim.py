@@ -14,10 +14,9 @@ from typing import Callable
 import mujoco
 import numpy as np
 
+from assistbot.interfaces import CONTROL_DT
 from assistbot.robot.ik_model import ARM_GEOMS, ARM_JOINTS, HUMAN_BODY_GEOMS
 from assistbot.robot.primitives import Primitive, Progress, Status
-
-CONTROL_DT = 0.02
 
 
 @dataclass
