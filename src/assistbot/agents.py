@@ -22,8 +22,15 @@ def _dnf_agent(seed: int, overrides: dict[str, Any]) -> Agent:
     return Cognition(overrides=overrides or None, seed=seed)
 
 
-#: the agents a scenario names by a word (``dnf``: the seed's field architecture)
-AGENTS: dict[str, AgentFactory] = {"dnf": _dnf_agent}
+def _fsm_agent(seed: int, overrides: dict[str, Any]) -> Agent:
+    from assistbot.statemachine.agent import fsm_agent
+
+    return fsm_agent(seed, overrides)
+
+
+#: the agents a scenario names by a word (``dnf``: the seed's field architecture; ``fsm``: the state-machine
+#: baseline, `assistbot.statemachine`)
+AGENTS: dict[str, AgentFactory] = {"dnf": _dnf_agent, "fsm": _fsm_agent}
 
 
 def agent_factory(spec: str, where: str) -> AgentFactory:

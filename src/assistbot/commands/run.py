@@ -18,6 +18,9 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
                    help="vision (the robot's cameras) or oracle (ground truth, for debugging; labelled in every output)")
     p.add_argument("--set", dest="sets", action="append", default=[], metavar="PATH=VALUE",
                    help="override a parameter by dotted path, e.g. --set cognition.k=0.9 (repeatable)")
+    p.add_argument("--agent", default=None, metavar="AGENT",
+                   help="the robot's mind instead of the scenario's: dnf (the field architecture), fsm (the "
+                        "state-machine baseline) or package.module:factory")
     p.add_argument("--no-video", action="store_true", help="skip the video (faster)")
 
 
@@ -43,6 +46,13 @@ def run(args: argparse.Namespace) -> int:
     from assistbot.scenario import load_scenario
 
     scenario = load_scenario(args.scenario)
+    if args.agent is not None:
+        import dataclasses
+
+        from assistbot.agents import agent_factory
+
+        agent_factory(args.agent, "--agent")
+        scenario = dataclasses.replace(scenario, agent=args.agent)
     overrides = parse_sets(args.sets)
     out = args.out or Path("render") / scenario.name
     result = run_scenario(scenario, out=out, perception=args.perception, seed=args.seed, overrides=overrides,
