@@ -1,4 +1,4 @@
-"""Run the architecture on a percept timeline and collect what it decided and said."""
+"""Run an agent (the field architecture by default) on a percept timeline and collect what it decided and said."""
 
 from __future__ import annotations
 
@@ -9,28 +9,36 @@ from assistbot.cognition.architecture import Cognition
 from assistbot.cognition.config import LAYERS
 from assistbot.cognition.percept import Decision, Said
 from assistbot.cognition.timeline import Timeline
+from assistbot.interfaces import Agent
 
 
 @dataclass
 class Replay:
-    """The outcome of one timeline: the architecture (with its recorder), every decision, the log."""
+    """The outcome of one timeline: the agent (the architecture, with its recorder), every decision, the log."""
 
     timeline: Timeline
-    cognition: Cognition
+    agent: Agent
     decisions: list[Decision] = field(default_factory=list)
     recorder: Any = None
 
     @property
+    def cognition(self) -> Cognition:
+        """The field architecture that ran (its fields, for the figures)."""
+        if not isinstance(self.agent, Cognition):
+            raise TypeError(f"the timeline ran {type(self.agent).__name__}, not the field architecture")
+        return self.agent
+
+    @property
     def said(self) -> list[Said]:
-        return self.cognition.log
+        return [u for d in self.decisions for u in d.utterances]
 
     @property
     def chosen(self) -> list[str]:
         """The actions decided, in order."""
-        return [a for _, kind, a in self.cognition.history if kind == "decide"]
+        return [a for _, kind, a in self.agent.decisions() if kind == "decide"]
 
     def decided_at(self, action: str) -> float | None:
-        for t, kind, a in self.cognition.history:
+        for t, kind, a in self.agent.decisions():
             if kind == "decide" and a == action:
                 return t
         return None
@@ -46,9 +54,10 @@ class Replay:
     def log_lines(self) -> list[str]:
         """The decision / utterance log, one event per line, in time order."""
         events: list[tuple[float, int, str]] = []
-        for t, kind, a in self.cognition.history:
+        targets = iter([d.target for d in self.decisions if d.new and d.action])   # one per decision, in order
+        for t, kind, a in self.agent.decisions():
             if kind == "decide":
-                target = self.cognition.target_of(a) if a else None
+                target = next(targets, None)
                 events.append((t, 0, f"{t:7.2f}  DECIDE   {a}" + (f"  (target: {target})" if target else "")))
             else:
                 events.append((t, 0, f"{t:7.2f}  RELEASE  {a}  [{kind.replace('release ', '').strip('()')}]"))
@@ -58,11 +67,20 @@ class Replay:
 
 
 def replay(timeline: Timeline, overrides: Mapping[str, Any] | None = None, record: bool = True, every: int = 4,
-           backend: str = "auto", seed: int | None = 0) -> Replay:
-    """Play ``timeline`` through the ORACLE perception into a fresh `Cognition`."""
-    cog = Cognition(overrides={**timeline.config, **(overrides or {})}, backend=backend, seed=seed)
-    rec = cog.record(every=every) if record else None
-    out = Replay(timeline, cog, recorder=rec)
+           backend: str = "auto", seed: int | None = 0, agent: str = "dnf") -> Replay:
+    """Play ``timeline`` (ground-truth percepts) into a fresh agent: the field architecture (``dnf``, recorded
+    for the figures when ``record``), or any other `assistbot.agents` name or ``module:factory``."""
+    rec = None
+    a: Agent
+    if agent == "dnf":
+        cog = Cognition(overrides={**timeline.config, **(overrides or {})}, backend=backend, seed=seed)
+        rec = cog.record(every=every) if record else None
+        a = cog
+    else:
+        from assistbot.agents import agent_factory
+
+        a = agent_factory(agent, "--agent")(seed or 0, dict(overrides or {}))
+    out = Replay(timeline, a, recorder=rec)
     for p in timeline.percepts():
-        out.decisions.append(cog.update(p))
+        out.decisions.append(a.update(p))
     return out

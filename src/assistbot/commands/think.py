@@ -6,7 +6,7 @@ import argparse
 from pathlib import Path
 
 NAME = "think"
-HELP = "run the field architecture on a percept timeline (YAML) and write the seed-style figures and a decision/utterance log"
+HELP = "run the field architecture (or another agent) on a percept timeline (YAML) and write the seed-style figures and a decision/utterance log"
 ORDER = 40
 
 
@@ -16,6 +16,8 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument("--set", dest="overrides", action="append", default=[], metavar="PATH=VALUE",
                    help="change a cognition parameter, e.g. --set fields.AEL.h=-4 or --set k=0.9 (repeatable)")
     p.add_argument("--backend", choices=["auto", "numpy", "numba"], default="auto", help="field stepping path (default: auto)")
+    p.add_argument("--agent", default="dnf", metavar="AGENT",
+                   help="dnf (the field architecture, default), fsm (the state-machine baseline: no figures) or package.module:factory")
     p.add_argument("--no-figures", action="store_true", help="write only the log")
 
 
@@ -41,13 +43,15 @@ def run(args: argparse.Namespace) -> int:
 
     tl = load_timeline(args.timeline)
     overrides = _overrides(args.overrides)
-    rep = replay(tl, overrides=overrides, record=not args.no_figures, backend=args.backend)
+    figures = not args.no_figures and args.agent == "dnf"   # the figures show the fields
+    rep = replay(tl, overrides=overrides, record=figures, backend=args.backend, agent=args.agent)
     out = args.out or Path("render/think") / tl.name
     out.mkdir(parents=True, exist_ok=True)
     lines = rep.log_lines()
-    header = [f"# {tl.name}: {tl.description.strip()}", f"# timeline: {tl.source}; perception: ORACLE (ground truth)", ""]
+    header = [f"# {tl.name}: {tl.description.strip()}",
+              f"# timeline: {tl.source}; perception: ORACLE (ground truth); agent: {args.agent}", ""]
     (out / "log.txt").write_text("\n".join(header + lines) + "\n")
-    paths = [] if args.no_figures else write_figures(rep, out)
+    paths = write_figures(rep, out) if figures else []
     print(f"think {tl.name}: {len(rep.chosen)} decisions, {len(rep.said)} utterances; wrote {out}/log.txt" +
           (f" and {len(paths)} figures" if paths else ""))
     for line in lines:

@@ -8,8 +8,8 @@ The same contract as the field architecture (`assistbot.interfaces.Agent`): a `P
               ``initiative_after`` s, the robot takes the next step of the task (`rules.next_step`).
     ACTING    an action runs until the robot's proprioception reports it ended; then IDLE, or AWAITING
               after an action that asks the person for something.
-    AWAITING  the robot asked, offered or suggested: cues are answered as in IDLE, but the robot takes
-              no step of its own for ``answer_timeout`` s.
+    AWAITING  the robot asked for something or suggested the drink: cues are answered as in IDLE, but the
+              robot takes no step of its own until the situation changes or ``answer_timeout`` s pass.
     STOPPED   an object fell over: the robot says so once and does nothing more.
 
 Repeated failure: an action that failed ``max_failures`` times in the same situation (the same remembered
@@ -29,6 +29,11 @@ from assistbot.statemachine import rules
 from assistbot.statemachine.memory import Memory
 from assistbot.task import FALLS, ROBOT_ACTION_BY_NAME, UTTERANCES
 
+#: the partner responses (`RobotAction.response`) that come after the robot's action has ended -- the person
+#: hands over what was asked for, drinks when told -- rather than during it (taking what the robot holds
+#: out, pulling the stopper from the bottle it holds)
+ANSWERED_AFTER = ("give_object", "drink")
+
 
 @dataclass
 class StateMachineConfig:
@@ -38,6 +43,7 @@ class StateMachineConfig:
     answer_timeout: float = 15.0    # s the robot waits for an answer to its request or offer
     max_failures: int = 2           # failures of one action in one situation before it is given up there
     fallen_after: float = 1.0       # s an object must be seen lying before the robot gives up
+    cue_confirm: float = 0.3        # s a cue of the person must show without a break: one misread frame is not a cue
 
     @classmethod
     def from_overrides(cls, overrides: dict[str, Any], where: str = "agent: fsm") -> "StateMachineConfig":
@@ -70,11 +76,12 @@ class StateMachineAgent:
 
     def __init__(self, config: StateMachineConfig | None = None) -> None:
         self.config = config or StateMachineConfig()
-        self.memory = Memory()
+        self.memory = Memory(confirm=self.config.cue_confirm)
         self.phase = Phase.IDLE
         self.doing: str | None = None
         self.error: str | None = None
         self.awaiting_until = 0.0
+        self.asked_in: frozenset = frozenset()      # the situation the running (or last) action was decided in
         self.failures: dict[tuple[str, frozenset], int] = {}
         self.said_mismatch: str | None = None     # the mismatch said for the cue still showing
         self.gave_up: set[tuple[str, frozenset]] = set()
@@ -128,7 +135,7 @@ class StateMachineAgent:
         if p.robot.status.value == "failed":
             key = (done, self._situation())
             self.failures[key] = self.failures.get(key, 0) + 1
-        asks = ROBOT_ACTION_BY_NAME[done].response is not None and p.robot.status.value == "succeeded"
+        asks = ROBOT_ACTION_BY_NAME[done].response in ANSWERED_AFTER and p.robot.status.value == "succeeded"
         if asks:
             self.awaiting_until = p.t + self.config.answer_timeout
         self._go(p.t, Phase.AWAITING if asks else Phase.IDLE)
@@ -153,10 +160,10 @@ class StateMachineAgent:
         if cue is not None:
             return self._unless_given_up(t, cue[0], said)
         if self.phase is Phase.AWAITING:
-            if t < self.awaiting_until:
-                return None
+            if t < self.awaiting_until - 1e-9 and self._situation() == self.asked_in:
+                return None               # no answer yet, and still time for one
             self._go(t, Phase.IDLE)
-        if m.person_acting() or m.idle_for(t) < self.config.initiative_after or m.holding is not None:
+        if m.person_acting() or m.idle_for(t) < self.config.initiative_after - 1e-9 or m.holding is not None:
             return None
         step = rules.next_step(m)
         if step is None or not rules.feasible(step, m):
@@ -182,7 +189,7 @@ class StateMachineAgent:
         if error is not None:
             said.append(_say(t, "AML", error))
         said.append(_say(t, "AEL", action))
-        self.doing, self.error = action, error
+        self.doing, self.error, self.asked_in = action, error, self._situation()
         self.history.append((t, "decide", action))
         self._go(t, Phase.ACTING)
         return Decision(t, action=action, target=self._target(), new=True, released=released, error=error, utterances=said)

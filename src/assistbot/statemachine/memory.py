@@ -29,13 +29,24 @@ class Memory:
     """The facts the rules read, in the vocabulary of the task's ``requires`` (``bottle_state``,
     ``glass_zone`` ...); an object held out by the person is in zone ``held_out``."""
 
+    confirm: float = 0.0                                 # s a cue must show without a break to count
     objects: dict[str, ObjectFacts] = field(default_factory=dict)
-    cues: list[str] = field(default_factory=list)        # the OL items seen in the latest percept
+    cues: list[str] = field(default_factory=list)        # the OL items seen without a break for ``confirm`` s
+    showing_since: dict[str, float] = field(default_factory=dict)   # OL item -> since when it shows
     holding: str | None = None                           # the robot's hand (proprioception)
     hand_busy_at: float | None = None                    # the last time the person's hand did something
 
     def take_in(self, p: Percept) -> None:
-        self.cues = ol_items_of(p)
+        now = ol_items_of(p)
+        h = p.hand
+        if h.seen and h.held_out and h.object_in_hand is None and h.posture in ("grasp_ag", "grasp_sg"):
+            # an object held out that the cameras cannot name: the one task object not seen on the table
+            unseen = [o for o in OBJECTS if o in p.objects and not p.objects[o].seen]
+            if len(unseen) == 1:
+                now += [f"{h.posture}_{unseen[0]}", f"hold_out_{unseen[0]}"]
+        self.showing_since = {c: self.showing_since.get(c, p.t) for c in now}
+        # a percept comes every 100 ms: a cue seen in n percepts in a row has shown for (n - 1) x 100 ms
+        self.cues = [c for c, t0 in self.showing_since.items() if p.t - t0 >= self.confirm - 1e-9]
         self.holding = p.robot.holding
         held_out = p.hand.object_in_hand if p.hand.seen and p.hand.held_out else None
         for name, o in p.objects.items():

@@ -121,6 +121,8 @@ def build_jobs(spec: SweepSpec) -> list[Job]:
                 data["objects"] = objects
             if "human.profile" in values:
                 data["human"] = {**(data.get("human") or {}), "profile": check_value("human.profile", values["human.profile"], spec.source)}
+            if "agent" in values:
+                data["agent"] = check_value("agent", values["agent"], spec.source)
             data["time_limit"] = tl
             overrides = {k: check_value(k, v, spec.source) for k, v in values.items() if not is_scenario_path(k)}
             points.append((values, data, overrides))

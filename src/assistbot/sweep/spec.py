@@ -8,6 +8,7 @@ A parameter is a dotted path and a value spec:
     human.reaction_delay=uniform(0.2,3)x4   4 random draws, seeded by --sample-seed and the path
     objects.glass.position=[-0.25,0.1],[-0.2,0.15]   object places as [x, y] pairs (table metres)
     objects.glass.position.x=-0.3:-0.2:3             or one coordinate, the other kept from the scenario
+    agent=dnf,fsm                       the robot's mind (assistbot.agents), as the scenario key ``agent:``
 
 Random specs: uniform(a,b), loguniform(a,b), normal(mean,sd), randint(a,b) (ends included),
 choice(a|b|c), each followed by ``xN``. The same sample seed gives the same values, so a
@@ -45,7 +46,7 @@ from assistbot.scenario import VISION_PARAMS, check_vision_value
 OBJECT_PATHS = tuple(f"objects.{o}.{k}" for o in catalogue.TASK_OBJECTS
                      for k in ("position", "position.x", "position.y", "zone", "state"))
 #: paths that change the scenario itself rather than override a parameter: the partner's profile
-SCENARIO_PATHS = ("human.profile",)
+SCENARIO_PATHS = ("human.profile", "agent")
 FILE_KEYS = ("scenario", "scenarios", "params", "seeds", "perception", "time_limit", "sample_seed", "out")
 PERCEPTIONS = ("vision", "oracle")
 _RANDOM = re.compile(r"^\s*([a-z_]+)\s*\((.*)\)\s*[x×*]\s*(\d+)\s*$", re.IGNORECASE)
@@ -216,6 +217,13 @@ def check_value(path: str, value: Any, where: str) -> Any:
             CognitionConfig().set(path[len("cognition."):], value)
         except UserError as exc:
             raise UserError(where, path, exc.message) from None
+        return value
+    if path == "agent":
+        from assistbot.agents import agent_factory
+
+        if not isinstance(value, str):
+            raise UserError(where, path, f"must be an agent's name or package.module:factory, got {value!r}")
+        agent_factory(value, where)
         return value
     if path == "human.profile":
         from assistbot.human.profiles import PROFILES
