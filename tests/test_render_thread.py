@@ -78,7 +78,7 @@ def test_pipelined_vision_sees_the_world_one_perception_tick_late(world):
 
 
 def test_pipelined_is_a_boolean_override():
-    assert split_overrides({"vision.pipelined": False}, "s.yaml")[2] == {"pipelined": False}
+    assert split_overrides({"vision.pipelined": False}, "s.yaml").vision == {"pipelined": False}
     with pytest.raises(UserError, match="vision.pipelined.*true or false"):
         split_overrides({"vision.pipelined": "no"}, "s.yaml")
 

@@ -154,3 +154,14 @@ def test_an_object_held_out_that_vision_cannot_name_is_the_one_not_seen_on_the_t
              "hand": {"posture": "reach", "directed_at": "bottle"}}
     hidden = {"t": 1.0, "bottle": {"seen": False}, "hand": {"posture": "grasp_ag", "held_out": True}}
     assert _fsm(_tl([scene, hidden], duration=3.0)).chosen == ["Receive-object"]
+
+
+def test_the_object_just_handed_over_still_held_out_is_not_an_offer_until_the_hand_came_back():
+    scene = {"t": 0.0, "bottle": {"zone": "RWS", "state": "open"}, "glass": {"zone": "RWS", "state": "full"},
+             "hand": {"posture": "none"}}
+    handed = {"t": 4.0, "glass": {"zone": "HWS"}, "robot": {"status": "succeeded", "action": "Reach-full-glass-to-hand-over"},
+              "hand": {"posture": "grasp_sg", "object_in_hand": "glass", "held_out": True}}
+    back = {"t": 6.0, "hand": {"held_out": False}}
+    offered = {"t": 7.0, "hand": {"held_out": True}}
+    assert _fsm(_tl([scene, handed, back], duration=6.9)).chosen == ["Reach-full-glass-to-hand-over"]
+    assert _fsm(_tl([scene, handed, back, offered], duration=8.0)).chosen == ["Reach-full-glass-to-hand-over", "Receive-object"]

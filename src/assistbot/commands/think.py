@@ -6,7 +6,8 @@ import argparse
 from pathlib import Path
 
 NAME = "think"
-HELP = "run the field architecture (or another agent) on a percept timeline (YAML) and write the seed-style figures and a decision/utterance log"
+HELP = ("run the field architecture (or another agent) on a percept timeline (YAML) and write the seed-style figures "
+        "and a decision/utterance log")
 ORDER = 40
 
 

@@ -7,10 +7,12 @@ The one place that names the concrete parts. The agent is chosen by the scenario
 from __future__ import annotations
 
 import difflib
+from dataclasses import dataclass, field
 from typing import Any
 
 from assistbot.agents import agent_factory
 from assistbot.episode.drinking_task import DrinkingTask
+from assistbot.episode.perturb import PERTURB_PARAMS, Perturbation, PerturbedPerception, check_perturb_value
 from assistbot.episode.runner import Episode
 from assistbot.errors import UserError
 from assistbot.interfaces import CONTROL_DT, Perception
@@ -19,29 +21,44 @@ from assistbot.scenario import VISION_PARAMS, Scenario, check_vision_value
 PERCEPTIONS = ("vision", "oracle")
 
 
-def split_overrides(overrides: dict[str, Any], where: str) -> tuple[dict, dict, dict]:
-    """Dotted paths -> (cognition, human, vision) overrides; an unknown path names the closest valid ones."""
+@dataclass
+class Overrides:
+    """A scenario's overrides by the part they go to (each without its prefix, but ``perturb``)."""
+
+    cognition: dict[str, Any] = field(default_factory=dict)   # the agent's parameters
+    human: dict[str, Any] = field(default_factory=dict)
+    vision: dict[str, Any] = field(default_factory=dict)
+    perturb: dict[str, float] = field(default_factory=dict)
+
+
+def split_overrides(overrides: dict[str, Any], where: str, agent: str = "dnf") -> Overrides:
+    """Dotted paths -> the parts' overrides; an unknown path names the closest valid ones. ``cognition.*``
+    paths are the field architecture's, checked here for ``agent`` dnf; another agent's factory checks its own."""
     from assistbot.cognition.config import CognitionConfig
     from assistbot.human.script import PARAMS as HUMAN_PARAMS
 
-    cog, hum, vis = {}, {}, {}
+    out = Overrides()
     cog_paths = ["cognition." + p for p in CognitionConfig().paths()]
-    valid = cog_paths + [f"human.{p}" for p in HUMAN_PARAMS] + list(VISION_PARAMS)
+    valid = cog_paths + [f"human.{p}" for p in HUMAN_PARAMS] + list(VISION_PARAMS) + list(PERTURB_PARAMS)
     for path, value in overrides.items():
-        if path in cog_paths:
+        if path.startswith("cognition.") and agent != "dnf":
+            out.cognition[path[len("cognition."):]] = value
+        elif path in cog_paths:
             try:
                 CognitionConfig().set(path[len("cognition."):], value)
             except UserError as exc:
                 raise UserError(where, path, exc.message) from None
-            cog[path[len("cognition."):]] = value
+            out.cognition[path[len("cognition."):]] = value
         elif path.startswith("human.") and path[6:] in HUMAN_PARAMS:
-            hum[path[6:]] = value
+            out.human[path[6:]] = value
         elif path in VISION_PARAMS:
-            vis[VISION_PARAMS[path]] = check_vision_value(path, value, where)
+            out.vision[VISION_PARAMS[path]] = check_vision_value(path, value, where)
+        elif path in PERTURB_PARAMS:
+            out.perturb[path[len("perturb."):]] = check_perturb_value(path, value, where)
         else:
             close = difflib.get_close_matches(path, valid, n=3)
             raise UserError(where, path, "unknown parameter path" + (f"; did you mean {', '.join(close)}?" if close else ""))
-    return cog, hum, vis
+    return out
 
 
 def build_episode(scenario: Scenario, perception: str = "vision", seed: int | None = None,
@@ -58,15 +75,15 @@ def build_episode(scenario: Scenario, perception: str = "vision", seed: int | No
     where = str(scenario.path or scenario.name)
     seed = scenario.seed if seed is None else int(seed)
     overrides = {**scenario.overrides, **(overrides or {})}
-    cog_o, hum_o, vis_o = split_overrides(overrides, where)
+    parts = split_overrides(overrides, where, scenario.agent)
     make_agent = agent_factory(scenario.agent, where)
     world = build_world(scenario.objects, seed=seed)
     hc: HumanConfig = scenario.human
-    if hum_o:
-        hc = HumanConfig(hc.profile, {**hc.overrides, **hum_o}, hc.script)
+    if parts.human:
+        hc = HumanConfig(hc.profile, {**hc.overrides, **parts.human}, hc.script)
     partner = HumanController(world, config=hc, seed=seed, dt=CONTROL_DT)
     actor = RobotExecutor(world)
-    agent = make_agent(seed, cog_o)
+    agent = make_agent(seed, parts.cognition)
     seeing: Perception
     if perception == "oracle":
         from assistbot.episode.oracle import OraclePerception
@@ -75,6 +92,9 @@ def build_episode(scenario: Scenario, perception: str = "vision", seed: int | No
     else:
         from assistbot.episode.vision_perception import VisionPerception
 
-        seeing = VisionPerception(world, seed=seed, **vis_o)
+        seeing = VisionPerception(world, seed=seed, **parts.vision)
+    perturbation = Perturbation(**parts.perturb)
+    if perturbation.active:
+        seeing = PerturbedPerception(seeing, perturbation, seed)
     return Episode(scenario, seed, world, seeing, agent, actor, partner, DrinkingTask(world, scenario.time_limit),
                    overrides=overrides, frame_every=frame_every)

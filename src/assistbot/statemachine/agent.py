@@ -85,6 +85,7 @@ class StateMachineAgent:
         self.failures: dict[tuple[str, frozenset], int] = {}
         self.said_mismatch: str | None = None     # the mismatch said for the cue still showing
         self.gave_up: set[tuple[str, frozenset]] = set()
+        self.just_given: str | None = None       # the object the robot has just handed over
         self.waited: frozenset | None = None      # the situation the robot last decided to wait in
         self.history: list[tuple[float, str, str]] = []
         self.transitions: list[tuple[float, str, str]] = []   # (t, from phase, to phase)
@@ -95,6 +96,7 @@ class StateMachineAgent:
         m = self.memory
         m.take_in(percept)
         released = self._released(percept)
+        self._not_an_offer_what_was_just_given()
         said: list[Said] = []
         fell = m.fallen(t, self.config.fallen_after)
         if fell is not None and self.phase is not Phase.STOPPED and self.phase is not Phase.ACTING:
@@ -135,11 +137,27 @@ class StateMachineAgent:
         if p.robot.status.value == "failed":
             key = (done, self._situation())
             self.failures[key] = self.failures.get(key, 0) + 1
-        asks = ROBOT_ACTION_BY_NAME[done].response in ANSWERED_AFTER and p.robot.status.value == "succeeded"
+        action = ROBOT_ACTION_BY_NAME[done]
+        succeeded = p.robot.status.value == "succeeded"
+        asks = action.response in ANSWERED_AFTER and succeeded
+        if action.response == "take_object" and succeeded:
+            self.just_given = action.target
         if asks:
             self.awaiting_until = p.t + self.config.answer_timeout
         self._go(p.t, Phase.AWAITING if asks else Phase.IDLE)
         return done
+
+    def _not_an_offer_what_was_just_given(self) -> None:
+        """The person who has just taken an object from the robot still holds it out as her hand comes
+        back: not an offer, until she has once been seen not holding it out."""
+        if self.just_given is None:
+            return
+        held = f"hold_out_{self.just_given}"
+        if held in self.memory.showing_since:       # held out in this percept, confirmed or not
+            if held in self.memory.cues:
+                self.memory.cues.remove(held)
+        else:
+            self.just_given = None
 
     def _choose(self, t: float, said: list[Said]) -> tuple[str, str | None] | None:
         m = self.memory

@@ -13,6 +13,8 @@ from assistbot.cognition.architecture import ol_items_of
 from assistbot.cognition.percept import Percept
 from assistbot.task import OBJECTS
 
+#: a cue beside the OL items: something held out that neither the cameras nor the table can name
+HOLD_OUT_UNNAMED = "hold_out_something"
 #: OL items that are the person acting on their own (not a cue addressed to the robot)
 ACTING = ("reach", "grasp", "remove_stopper", "pour", "drink")
 
@@ -44,6 +46,8 @@ class Memory:
             unseen = [o for o in OBJECTS if o in p.objects and not p.objects[o].seen]
             if len(unseen) == 1:
                 now += [f"{h.posture}_{unseen[0]}", f"hold_out_{unseen[0]}"]
+            else:
+                now.append(HOLD_OUT_UNNAMED)
         self.showing_since = {c: self.showing_since.get(c, p.t) for c in now}
         # a percept comes every 100 ms: a cue seen in n percepts in a row has shown for (n - 1) x 100 ms
         self.cues = [c for c, t0 in self.showing_since.items() if p.t - t0 >= self.confirm - 1e-9]

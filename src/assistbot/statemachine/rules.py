@@ -59,7 +59,7 @@ def cue_response(m: Memory) -> tuple[str, str | None] | None:
     error = mismatch(m)
     if error is not None:
         return "Communicate-Error", error
-    held_out = next((c[len("hold_out_"):] for c in m.cues if c.startswith("hold_out_")), None)
+    held_out = next((c[len("hold_out_"):] for c in m.cues if c.startswith("hold_out_")), None)   # or "something"
     if held_out is not None:
         if held_out == "bottle" and m.state("bottle") == "closed":
             return "Grasp-hold-bottle-to-remove-cup", None

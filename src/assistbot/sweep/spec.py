@@ -40,6 +40,7 @@ from typing import Any
 import yaml
 
 from assistbot import catalogue
+from assistbot.episode.perturb import PERTURB_PARAMS, check_perturb_value
 from assistbot.errors import UserError
 from assistbot.scenario import VISION_PARAMS, check_vision_value
 
@@ -59,7 +60,7 @@ def valid_paths() -> list[str]:
     from assistbot.human.script import PARAMS as HUMAN_PARAMS
 
     return (["cognition." + p for p in CognitionConfig().paths()] + [f"human.{p}" for p in HUMAN_PARAMS]
-            + list(VISION_PARAMS) + list(OBJECT_PATHS) + list(SCENARIO_PATHS))
+            + list(VISION_PARAMS) + list(PERTURB_PARAMS) + list(OBJECT_PATHS) + list(SCENARIO_PATHS))
 
 
 def check_path(path: str, where: str) -> None:
@@ -241,6 +242,8 @@ def check_value(path: str, value: Any, where: str) -> Any:
         return cfg.overrides[path[len("human."):]]
     if path in VISION_PARAMS:
         return check_vision_value(path, value, where)
+    if path in PERTURB_PARAMS:
+        return check_perturb_value(path, value, where)
     return value  # objects.*: checked against each scenario when the jobs are built
 
 
