@@ -160,3 +160,38 @@ def test_the_task_space_report_gives_arrangements_profiles_and_failure_kinds(tmp
     assert "| overlap with the person > 1 cm | 1 | 2.0 cm |" in md
     with pytest.raises(UserError, match="unknown profile"):
         Param.parse("human.profile", "lazy")
+
+
+class AgentExecutor(FakeExecutor):
+    """Rows of an agent comparison: the fsm fails once the cue comes 1 s late or later, with a failed action."""
+
+    def run(self, jobs):
+        for job in jobs:
+            self.ran.append(job.id)
+            p = job.params
+            fail = p["agent"] == "fsm" and p["perturb.cue_delay"] >= 1
+            yield {"job_id": job.id, "scenario": job.scenario, **p, "seed": job.seed, "perception": job.perception,
+                   "time_limit": job.time_limit, "status": "ok", "success": not fail, "time_to_drink": None if fail else 40.0,
+                   "end_reason": "repeating" if fail else "drink", "end_detail": "", "decisions": "A", "n_decisions": 1,
+                   "n_failed_actions": 2 if fail else 0, "errors_communicated": 0, "spilled_fraction": 0.0,
+                   "min_distance_human": 0.2, "touched_person": False, "touch_depth": 0.0, "touch_force": 0.0,
+                   "sim_time": 40.0, "wall_seconds": 1.0, "cpu_seconds": 1.0, "scenario_sha": job.scenario_sha}
+
+
+def test_report_by_agent_splits_each_perturbation_by_agent(tmp_path):
+    from assistbot.sweep import write_report
+
+    p = tmp_path / "tiny.yaml"
+    p.write_text(TINY)
+    spec = SweepSpec(scenarios=[str(p)], seeds=2, perception="oracle",
+                     params=[Param.parse("agent", "dnf,fsm"), Param.parse("perturb.cue_delay", "0,1,2")])
+    out = tmp_path / "out"
+    run_sweep(spec, out, executor=AgentExecutor(), progress=False, log=lambda m: None)
+    paths = write_report(out, by="agent")
+    md = paths[0].read_text()
+    assert "### perturb.cue_delay, by agent" in md
+    assert "| 0 | fsm | 2 | 2 | 1.00 |" in md and "| 1 | fsm | 2 | 0 | 0.00 |" in md and "| 2 | dnf | 2 | 2 | 1.00 |" in md
+    assert "| 1 | fsm | 2 | 0 | 0.00 | [0.00, 0.66] | – | – | 2.00 |" in md   # failed actions per episode
+    assert any(x.name == "success_vs_perturb.cue_delay.png" for x in paths)
+    with pytest.raises(UserError, match="--by: human.profile: not a swept parameter.*agent, perturb.cue_delay"):
+        write_report(out, by="human.profile")

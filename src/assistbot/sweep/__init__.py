@@ -22,11 +22,11 @@ from assistbot.sweep.spec import Param, SweepSpec, is_sweep_file, load_sweep_fil
 from assistbot.sweep.worker import run_job
 
 
-def write_report(results_dir, out=None, expect=None):
+def write_report(results_dir, out=None, expect=None, by=None):
     """Summary tables, plots and report.md for a sweep folder (see `assistbot.sweep.report`)."""
     from assistbot.sweep.report import write_report as _write
 
-    return _write(results_dir, out, expect)
+    return _write(results_dir, out, expect, by)
 
 
 __all__ = ["Job", "LocalExecutor", "Param", "RayExecutor", "SweepOutcome", "SweepSpec", "build_jobs", "is_sweep_file",

@@ -86,6 +86,18 @@ def table_rows(rows: list[dict], factor: str) -> list[tuple[Any, Cell]]:
     return [(v, Cell.of(groups[v])) for v in _ordered([r.get(factor) for r in rows])]
 
 
+def _by_table(rows: list[dict], factor: str, by: str) -> list[str]:
+    """``factor``'s values x ``by``'s values: success (Wilson), time to drink, failed actions per episode."""
+    out = [f"| {factor} | {by} | n | drank | success rate | 95% CI (Wilson) | time to drink (s) | 95% CI (t) | "
+           "failed actions per episode | errors communicated |", "|---|---|---:|---:|---:|---|---:|---|---:|---:|"]
+    for v in _ordered([r.get(factor) for r in rows]):
+        for b, c in table_rows([r for r in rows if _key(r.get(factor)) == v], by):
+            out.append(f"| {_fmt_value(v)} | {_fmt_value(b)} | {c.n} | {c.successes} | {_f(c.rate)} | "
+                       f"{_ci(c.rate_low, c.rate_high)} | {_f(c.ttd_mean, 1)} | {_ci(c.ttd_low, c.ttd_high, 1)} | "
+                       f"{_f(c.failed_mean)} | {_f(c.errors_mean)} |")
+    return out
+
+
 def _markdown_table(factor: str, cells: list[tuple[Any, Cell]]) -> list[str]:
     out = [f"| {factor} | n | drank | success rate | 95% CI (Wilson) | time to drink (s) | 95% CI (t) | decisions | "
            "errors communicated | spilled | min distance (m) |",
@@ -97,7 +109,9 @@ def _markdown_table(factor: str, cells: list[tuple[Any, Cell]]) -> list[str]:
     return out
 
 
-def _plot_param(rows: list[dict], param: str, scenarios: list[str], path: Path) -> None:
+def _plot_param(rows: list[dict], param: str, scenarios: list[str], path: Path, by: str | None = None) -> None:
+    """Success and time to drink against ``param``: one line per scenario, or per value of ``by`` (then with a
+    third panel: the robot actions that failed per episode)."""
     import matplotlib
 
     matplotlib.use("Agg")
@@ -106,9 +120,16 @@ def _plot_param(rows: list[dict], param: str, scenarios: list[str], path: Path) 
     values = _ordered([r.get(param) for r in rows])
     numeric = _numeric(values)
     xs_of = {v: (v if numeric else i) for i, v in enumerate(values)}
-    fig, (ax1, ax2) = plt.subplots(1, 2, figsize=(10, 3.8), constrained_layout=True)
-    groups = [(s, [r for r in rows if r["scenario"] == s]) for s in scenarios] if len(scenarios) > 1 else [("all", rows)]
+    fig, axes = plt.subplots(1, 3 if by else 2, figsize=(15 if by else 10, 3.8), constrained_layout=True)
+    ax1, ax2 = axes[0], axes[1]
+    if by:
+        groups = [(f"{by} = {_fmt_value(b)}", [r for r in rows if _key(r.get(by)) == b]) for b in _ordered([r.get(by) for r in rows])]
+    else:
+        groups = [(s, [r for r in rows if r["scenario"] == s]) for s in scenarios] if len(scenarios) > 1 else [("all", rows)]
     for label, grp in groups:
+        if by:
+            cells_f = table_rows(grp, param)
+            axes[2].plot([xs_of[v] for v, _ in cells_f], [c.failed_mean for _, c in cells_f], marker="^", label=label)
         cells = [(v, c) for v, c in table_rows(grp, param)]
         xs = [xs_of[v] for v, _ in cells]
         rate = [c.rate for _, c in cells]
@@ -127,7 +148,10 @@ def _plot_param(rows: list[dict], param: str, scenarios: list[str], path: Path) 
     ax2.set_xlim(ax1.get_xlim())  # the same values in the same places
     if not ax2.lines:
         ax2.text(0.5, 0.5, "no episode drank", ha="center", va="center", transform=ax2.transAxes, color="grey")
-    for ax in (ax1, ax2):
+    if by:
+        axes[2].set_ylabel("robot actions failed per episode (mean)")
+        axes[2].set_xlim(ax1.get_xlim())
+    for ax in axes:
         ax.set_xlabel(param)
         ax.grid(alpha=0.3)
         if not numeric:
@@ -296,8 +320,12 @@ def _failure_section(rows: list[dict]) -> list[str]:
     return md
 
 
-def write_report(results_dir: str | Path, out: str | Path | None = None, expect: str | None = None) -> list[Path]:
+def write_report(results_dir: str | Path, out: str | Path | None = None, expect: str | None = None,
+                 by: str | None = None) -> list[Path]:
     """Write report.md, summary.csv and the plots; return the written paths (report.md first).
+
+    ``by``: a swept parameter (``agent``, say) whose values each other factor is split by: a table per
+    factor with a row per pair of values, and plots with a line per value of ``by``.
 
     ``expect``: an AEL decision sequence ("A > B > C"); the report then counts, per parameter value,
     the episodes that made exactly that sequence (e.g. the seed's, to see which k still reproduces it).
@@ -306,6 +334,8 @@ def write_report(results_dir: str | Path, out: str | Path | None = None, expect:
     params, rows = load_results(results_dir)
     out_dir = Path(out) if out is not None else (results_dir.parent if results_dir.suffix == ".csv" else results_dir) / "report"
     out_dir.mkdir(parents=True, exist_ok=True)
+    if by is not None and by not in params:
+        raise UserError("--by", by, f"not a swept parameter of {results_dir}; its parameters: {', '.join(params) or '(none)'}")
     scenarios = list(dict.fromkeys(r["scenario"] for r in rows))
     factors = (["scenario"] if len(scenarios) > 1 else []) + params
     varied = [p for p in params if len(_ordered([r.get(p) for r in rows])) > 1]
@@ -329,9 +359,11 @@ def write_report(results_dir: str | Path, out: str | Path | None = None, expect:
             summary.append([factor, _fmt_value(v), c.n, c.successes, c.rate, c.rate_low, c.rate_high,
                             c.ttd_mean, c.ttd_low, c.ttd_high, c.decisions_mean, c.errors_mean, c.spilled_mean,
                             c.min_distance])
+        if by is not None and factor != by:
+            md += [f"### {factor}, by {by}", ""] + _by_table(rows, factor, by) + [""]
         if factor in varied:
             png = out_dir / f"success_vs_{_safe(factor)}.png"
-            _plot_param(rows, factor, scenarios, png)
+            _plot_param(rows, factor, scenarios, png, by=by if factor != by else None)
             written.append(png)
             md += [f"![success vs {factor}]({png.name})", ""]
     space_md, space_summary = _task_space_section(rows, params)

@@ -58,6 +58,7 @@ class Cell:
     spilled_mean: float
     decisions_mean: float = math.nan  # AEL decisions per episode
     min_distance: float = math.nan  # closest the robot came to the human's head/torso over these episodes, m
+    failed_mean: float = math.nan  # robot actions that failed per episode (a decision the world did not bear out)
 
     @classmethod
     def of(cls, rows: Sequence[dict]) -> "Cell":
@@ -69,8 +70,10 @@ class Cell:
         spill = [float(r["spilled_fraction"]) for r in rows if r.get("spilled_fraction") is not None]
         dec = [float(r["n_decisions"]) for r in rows if r.get("n_decisions") is not None]
         dist = [float(r["min_distance_human"]) for r in rows if r.get("min_distance_human") is not None]
+        failed = [float(r["n_failed_actions"]) for r in rows if r.get("n_failed_actions") is not None]
         return cls(n=n, successes=s, rate=s / n if n else math.nan, rate_low=lo, rate_high=hi,
                    ttd_mean=ttd[0], ttd_low=ttd[1], ttd_high=ttd[2],
                    errors_mean=sum(errs) / len(errs) if errs else math.nan,
                    spilled_mean=sum(spill) / len(spill) if spill else math.nan,
-                   decisions_mean=sum(dec) / len(dec) if dec else math.nan, min_distance=min(dist) if dist else math.nan)
+                   decisions_mean=sum(dec) / len(dec) if dec else math.nan, min_distance=min(dist) if dist else math.nan,
+                   failed_mean=sum(failed) / len(failed) if failed else math.nan)
