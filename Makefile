@@ -7,7 +7,7 @@ BIN    := $(VENV)/bin
 STAMP  := $(VENV)/.installed
 DEBS   := libosmesa6 libegl1 libegl-mesa0 libgl1-mesa-dri espeak-ng
 
-.PHONY: demo test test-all lint bench matrix setup debs clean wheel-check
+.PHONY: demo test test-all lint bench matrix dnf-vs-fsm setup debs clean wheel-check
 
 setup: $(STAMP)
 
@@ -50,6 +50,16 @@ WORKERS ?= 2
 matrix: $(STAMP)
 	$(BIN)/assistbot sweep scenarios/sweeps/matrix.yaml --workers $(WORKERS) --out render/sweeps/matrix
 	$(BIN)/assistbot report render/sweeps/matrix
+
+# The field architecture against the state-machine baseline under degraded cues (scenarios/sweeps/dnf-vs-fsm/):
+# one sweep per perturbation, 684 episodes in all, each reported per agent. Hours on 2 cores; resumes.
+DNF_VS_FSM := $(wildcard scenarios/sweeps/dnf-vs-fsm/*.yaml)
+dnf-vs-fsm: $(STAMP)
+	@for f in $(DNF_VS_FSM); do \
+	  n=$$(basename $$f .yaml); \
+	  $(BIN)/assistbot sweep $$f --workers $(WORKERS) --no-progress || exit $$?; \
+	  $(BIN)/assistbot report render/sweeps/dnf-vs-fsm/$$n --by agent || exit $$?; \
+	done
 
 # The wheel as a user installs it: built, installed into a fresh venv, run from a temporary folder.
 wheel-check:
