@@ -75,13 +75,11 @@ class PerturbedPerception:
         self._rng = np.random.default_rng([seed, 0x9e37])
         self._past: deque[tuple[float, HandPercept]] = deque()
         self._cue: tuple[str, float] | None = None      # the cue posture showing, since when
-
-    @property
-    def render_seconds(self) -> float:
-        return self.inner.render_seconds
+        self.render_seconds = 0.0
 
     def perceive(self, t: float, body: RobotPercept) -> Percept:
         percept = self.inner.perceive(t, body)
+        self.render_seconds = self.inner.render_seconds
         percept.hand = self.degrade(t, percept.hand)
         return percept
 
