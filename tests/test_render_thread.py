@@ -59,6 +59,14 @@ def test_dropped_frames_follow_the_seed_with_or_without_the_thread(world):
     assert a == b and any(a) and not all(a)
 
 
+@pytest.mark.parametrize("p", [0.2, 0.6])
+def test_the_dropout_rate_is_within_its_binomial_interval(world, p):
+    n = 300
+    with StereoCapture(world.model, CaptureConfig(dropout=p, seed=5)) as cap:
+        dropped = sum(cap.grab(world.data).dropped for _ in range(n))
+    assert abs(dropped / n - p) < 4 * (p * (1 - p) / n) ** 0.5
+
+
 def test_pipelined_vision_sees_the_world_one_perception_tick_late(world):
     robot = RobotPercept()   # idle, holding nothing
     sync, piped = VisionPerception(world, pipelined=False), VisionPerception(world, pipelined=True)
@@ -85,6 +93,6 @@ def test_pipelined_is_a_boolean_override():
 
 @pytest.mark.parametrize("bad", [1.0, -0.1, True, "half"])
 def test_dropout_is_a_probability_override(bad):
-    assert split_overrides({"vision.dropout": 0.25}, "s.yaml")[2] == {"dropout": 0.25}
+    assert split_overrides({"vision.dropout": 0.25}, "s.yaml").vision == {"dropout": 0.25}
     with pytest.raises(UserError, match=r"vision.dropout.*a probability in \[0, 1\)"):
         split_overrides({"vision.dropout": bad}, "s.yaml")
