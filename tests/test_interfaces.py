@@ -44,7 +44,7 @@ def test_an_agent_without_fields_runs_the_episode_from_the_scenario_file(tmp_pat
 
 def test_an_unknown_agent_is_one_line_naming_the_file_and_the_key(tmp_path):
     path = tmp_path / "bad.yaml"
-    path.write_text(yaml.safe_dump({**SCENARIO, "agent": "fsm"}))
+    path.write_text(yaml.safe_dump({**SCENARIO, "agent": "behaviour-tree"}))
     p = subprocess.run([sys.executable, "-m", "assistbot.cli", "run", str(path), "--no-video", "--out", str(tmp_path / "o")],
                        capture_output=True, text=True)
     assert p.returncode == 2 and "Traceback" not in p.stderr
