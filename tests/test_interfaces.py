@@ -63,3 +63,16 @@ def test_the_loop_imports_no_concrete_part_and_fits_on_a_screen():
     assert imported <= {"__future__", "time", "dataclasses", "typing", "assistbot.cognition.percept",
                         "assistbot.interfaces", "assistbot.speech"}, imported
     assert len(inspect.getsource(Episode.run).splitlines()) <= 30
+
+
+def test_a_field_agent_episode_writes_the_seed_figures_with_its_decisions(tmp_path):
+    """The closed loop hands the recording and the decision history to the figures (as `think` does)."""
+    spec = {**SCENARIO, "name": "dnf-figures", "time_limit": 12, "agent": "dnf"}
+    path = tmp_path / "dnf.yaml"
+    path.write_text(yaml.safe_dump(spec))
+    r = run_scenario(path, out=tmp_path / "out", perception="oracle", video=False)
+    assert r.decisions, "the field architecture decides within 12 s with both objects ready in the RWS"
+    summary = json.loads((tmp_path / "out" / "summary.json").read_text())
+    assert sorted(Path(p).name for p in summary["figures"]) == sorted(
+        f"{layer}.png" for layer in ("asl", "ael", "csgl", "il", "aml", "oml"))
+    assert all(Path(p).stat().st_size > 10_000 for p in summary["figures"])

@@ -1,17 +1,20 @@
-"""The seed's figures from a replay: ASL and AEL input/activity (Fig. 3 B, C), CSGL past/present/future (Fig. 4/5 B)."""
+"""The seed's figures from a field recording: ASL and AEL input/activity (Fig. 3 B, C), CSGL past/present/future
+(Fig. 4/5 B). They need the recording, the decision history (to mark it) and a name for the titles, whether the
+run was a timeline replay or a closed-loop episode."""
 
 from __future__ import annotations
 
 from pathlib import Path
+from typing import Any, Iterable
 
-from assistbot.cognition.replay import Replay
 from assistbot.fields.plot import pyplot as _pyplot, save_figure
 
+History = Iterable[tuple[float, str, str]]
 
-def plot_csgl(rep: Replay, path: str | Path, title: str = "") -> Path:
+
+def plot_csgl(rec: Any, history: History, path: str | Path, title: str) -> Path:
     """Three panels, CSGL past / present / future: activity at each sub-goal over time."""
     plt = _pyplot()
-    rec = rep.recorder
     t = rec.times
     fig, axes = plt.subplots(3, 1, figsize=(8, 6), sharex=True)
     for ax, layer, label in zip(axes, ("CSGL_past", "CSGL_present", "CSGL_future"), ("CSGL - Past", "CSGL - Present", "CSGL - Future")):
@@ -20,16 +23,15 @@ def plot_csgl(rep: Replay, path: str | Path, title: str = "") -> Path:
         ax.axhline(0.0, color="k", lw=0.6, ls="--")
         ax.set_ylabel(label)
     axes[0].legend(loc="center left", bbox_to_anchor=(1.01, 0.5), fontsize=7, frameon=False)
-    _mark_decisions(rep, axes)
+    _mark_decisions(history, axes)
     axes[-1].set_xlabel("time (s)")
-    axes[0].set_title(title or f"{rep.timeline.name}: common sub-goals")
+    axes[0].set_title(title)
     return save_figure(fig, path)
 
 
-def plot_layer(rep: Replay, layer: str, path: str | Path, title: str = "") -> Path:
+def plot_layer(rec: Any, history: History, layer: str, path: str | Path, title: str) -> Path:
     """Input (top) and activity (bottom) of one layer, one line per item, decisions marked."""
     plt = _pyplot()
-    rec = rep.recorder
     t = rec.times
     fig, (ax_s, ax_u) = plt.subplots(2, 1, figsize=(9, 5.5), sharex=True)
     s_tr, u_tr = rec.item_traces(layer, "s"), rec.item_traces(layer, "u")
@@ -43,14 +45,14 @@ def plot_layer(rep: Replay, layer: str, path: str | Path, title: str = "") -> Pa
     ax_s.set_ylabel("input S")
     ax_u.set_ylabel("activity u")
     ax_u.legend(loc="center left", bbox_to_anchor=(1.01, 0.5), fontsize=7, frameon=False)
-    _mark_decisions(rep, (ax_s, ax_u))
+    _mark_decisions(history, (ax_s, ax_u))
     ax_u.set_xlabel("time (s)")
-    ax_s.set_title(title or f"{rep.timeline.name}: {layer}")
+    ax_s.set_title(title)
     return save_figure(fig, path)
 
 
-def _mark_decisions(rep: Replay, axes) -> None:
-    for t, kind, action in rep.cognition.history:
+def _mark_decisions(history: History, axes) -> None:
+    for t, kind, action in history:
         for ax in axes:
             ax.axvline(t, color="tab:red" if kind == "decide" else "0.6", lw=0.8, ls=":")
         if kind == "decide":
@@ -58,16 +60,15 @@ def _mark_decisions(rep: Replay, axes) -> None:
                              va="top", ha="right", color="tab:red")
 
 
-def write_figures(rep: Replay, out: str | Path) -> list[Path]:
-    """All figures of a replay into ``out``: ASL, AEL, IL, AML (input + activity), CSGL, OML."""
+def write_figures(name: str, recorder: Any, history: History, out: str | Path) -> list[Path]:
+    """All figures of a field recording into ``out``: ASL, AEL, IL, AML (input + activity), CSGL, OML."""
     out = Path(out)
-    name = rep.timeline.name
-    paths = [
-        plot_layer(rep, "ASL", out / "asl.png", f"{name}: action simulation layer (ASL) - input and activity"),
-        plot_layer(rep, "AEL", out / "ael.png", f"{name}: action execution layer (AEL) - input and activity"),
-        plot_csgl(rep, out / "csgl.png", f"{name}: CSGL past / present / future"),
-        plot_layer(rep, "IL", out / "il.png", f"{name}: intention layer (IL)"),
-        plot_layer(rep, "AML", out / "aml.png", f"{name}: action monitoring layer (AML)"),
-        plot_layer(rep, "OML", out / "oml.png", f"{name}: object memory layer (OML)"),
-    ]
+    history = list(history)
+    layers = (("ASL", "action simulation layer (ASL) - input and activity"),
+              ("AEL", "action execution layer (AEL) - input and activity"))
+    paths = [plot_layer(recorder, history, layer, out / f"{layer.lower()}.png", f"{name}: {what}") for layer, what in layers]
+    paths.append(plot_csgl(recorder, history, out / "csgl.png", f"{name}: CSGL past / present / future"))
+    for layer, what in (("IL", "intention layer (IL)"), ("AML", "action monitoring layer (AML)"),
+                        ("OML", "object memory layer (OML)")):
+        paths.append(plot_layer(recorder, history, layer, out / f"{layer.lower()}.png", f"{name}: {what}"))
     return paths

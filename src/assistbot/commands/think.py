@@ -52,7 +52,7 @@ def run(args: argparse.Namespace) -> int:
     header = [f"# {tl.name}: {tl.description.strip()}",
               f"# timeline: {tl.source}; perception: ORACLE (ground truth); agent: {args.agent}", ""]
     (out / "log.txt").write_text("\n".join(header + lines) + "\n")
-    paths = write_figures(rep, out) if figures else []
+    paths = write_figures(tl.name, rep.recorder, rep.agent.decisions(), out) if figures else []
     print(f"think {tl.name}: {len(rep.chosen)} decisions, {len(rep.said)} utterances; wrote {out}/log.txt" +
           (f" and {len(paths)} figures" if paths else ""))
     for line in lines:

@@ -7,7 +7,6 @@ frame by frame during the run and gets its audio track at the end.
 from __future__ import annotations
 
 import json
-import types
 import warnings
 from pathlib import Path
 
@@ -87,13 +86,11 @@ def write_figures(episode: Episode, recorder, out: Path) -> list[Path]:
     """The seed's figures (ASL/AEL input and activity, CSGL panels) from the run's field recording; none
     for an agent without fields."""
     from assistbot.cognition.figures import write_figures as cognition_figures
-    from assistbot.cognition.replay import Replay
 
     if recorder is None or not isinstance(episode.agent, FieldAgent):
         return []
     label = f"{episode.scenario.name}" + (" (ORACLE perception)" if episode.perception.name == "oracle" else "")
-    rep = Replay(timeline=types.SimpleNamespace(name=label), cognition=episode.agent, recorder=recorder)
-    return cognition_figures(rep, out)
+    return cognition_figures(label, recorder, episode.agent.decisions(), out)
 
 
 def add_audio(episode: Episode, video: Path, duration: float) -> bool:
@@ -102,6 +99,8 @@ def add_audio(episode: Episode, video: Path, duration: float) -> bool:
         warnings.warn("espeak-ng not found: video.mp4 is silent (apt-get install espeak-ng)", stacklevel=2)
         return False
     wav = synthesize(list(episode.speech), duration, video.with_suffix(".wav"))
+    if wav is None:     # espeak-ng went away between the check and the synthesis
+        return False
     tmp = video.with_name("video.muxed.mp4")
     mux(video, wav, tmp)
     tmp.replace(video)
