@@ -16,6 +16,7 @@ from assistbot.robot import primitives as P
 from assistbot.robot.actions import ACTION_PRIMITIVES, MOTIONS
 from assistbot.robot.controller import HANDOVER_DEPTH, RobotController
 from assistbot.robot.primitives import Status
+from assistbot.robot.primitives.reaching import READY_POSE_POS
 from assistbot.robot.sim import CONTROL_DT, body_lift, body_xy, run
 from assistbot.task.drinking import ROBOT_ACTIONS
 from assistbot.world import Arrangement, build_world
@@ -226,6 +227,23 @@ def test_turn_and_hand_over_gives_the_human_an_upright_glass(glass):
     st = w.state()
     assert w.data.xmat[w.body_id["glass"]][8] > 0.9 and st.robot_holds is None
     assert st.human_holds == "glass" or st.objects["glass"].zone == "HWS", st.summary()
+    assert_safe(s)
+
+
+def test_the_hand_that_turned_the_glass_and_gave_it_comes_back_to_rest_unwound():
+    """The hand holds the turned glass out upside down, toward the person's open hand near the middle line.
+    Once it is taken, the empty hand rolls back the way it turned before it goes to rest: straight for the
+    upright rest pose, the wrist winds on into its joint limits and stops short of the pose (then every
+    next action fails at its first move)."""
+    w, robot = make("RWS:closed@0.25,0.2", "RWS:inverted")
+    hand = (-0.045, -0.071, 0.215)      # the open hand as an active person holds it out for the glass
+    prim = P.TurnAndHandOver(robot, "glass", human_holds=lambda: w.human_holding() == "glass", partner_hand=lambda: hand)
+    pr, s, human = _give(w, robot, prim, body_xy(w, "glass"), "glass")
+    assert pr.status is Status.SUCCEEDED, pr.reason
+    assert [(b.name, b.status) for b in human.done][:1] == [("take_from_robot", Status.SUCCEEDED)]
+    assert np.linalg.norm(robot.tcp_pose().translation() - READY_POSE_POS) < 0.01
+    lo, hi = robot.ik.model.jnt_range[:, 0], robot.ik.model.jnt_range[:, 1]
+    assert np.all(np.minimum(robot.q() - lo, hi - robot.q()) > 0.05), robot.q()
     assert_safe(s)
 
 

@@ -7,9 +7,9 @@ from assistbot.robot.phases.grip import OPENED, Grip, Open
 from assistbot.robot.phases.lower_until_supported import LowerUntilSupported
 from assistbot.robot.phases.move import REACH_WAIT, UNREACHABLE_PATIENCE, Move
 from assistbot.robot.phases.relative import BackOff, Relative, Rise
-from assistbot.robot.phases.roll import Roll
+from assistbot.robot.phases.roll import Roll, Unroll
 from assistbot.robot.phases.wait import Wait, WaitFor
 from assistbot.robot.phases.wait_for_take import WaitForTake
 
 __all__ = ["OPENED", "REACH_WAIT", "UNREACHABLE_PATIENCE", "BackOff", "Grip", "LowerUntilSupported", "Move", "Open", "Phase",
-           "Relative", "RememberPlace", "Rise", "Roll", "SetCarrying", "Wait", "WaitFor", "WaitForTake"]
+           "Relative", "RememberPlace", "Rise", "Roll", "SetCarrying", "Unroll", "Wait", "WaitFor", "WaitForTake"]

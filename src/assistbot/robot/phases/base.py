@@ -24,6 +24,9 @@ class Phase(ABC):
     name = "phase"
     timeout = 5.0
     fallback: Callable[["Primitive"], list["Phase"]] | None = None
+    #: set by ``start`` when there is nothing to do here (an upright hand to unroll): the primitive goes
+    #: straight on to the next phase in the same tick, so such a phase costs no time
+    idle = False
 
     def start(self, prim: "Primitive") -> None:
         pass

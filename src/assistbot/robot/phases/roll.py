@@ -45,3 +45,18 @@ class Roll(Phase):
             if t >= self.timeout:
                 return Status.FAILED, f"{self.name}: the wrist did not turn ({np.degrees(rot_err):.0f} deg, {100 * pos_err:.1f} cm off)"
         return Status.RUNNING, ""
+
+
+class Unroll(Roll):
+    """An empty hand left upside down (it turned the glass, +pi about its approach axis) rolls back by -pi in
+    place, the way it came. Going straight for the upright rest pose, the IK would take the short way on, into
+    the wrist joints' limits, and stop there short of the pose. Upright already, or holding something (whose
+    orientation the roll would change), it is `idle`."""
+
+    def __init__(self, name: str = "unroll", duration: float = 1.5) -> None:
+        super().__init__(name, -np.pi, duration=duration)
+
+    def start(self, prim):
+        super().start(prim)
+        upside_down = self.origin.rotation().as_matrix()[2, 2] < 0.0
+        self.idle = not upside_down or prim.carrying

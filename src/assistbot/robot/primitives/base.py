@@ -142,10 +142,11 @@ class Primitive:
         self._held_xy = None
         self.carrying = False
         self._phases = self.phases()
-        self._k, self._t, self._t_total = 0, 0.0, 0.0
+        self._t, self._t_total = 0.0, 0.0
         self._failure = None
-        self.progress = Progress(Status.RUNNING, self._phases[0].name)
-        self._phases[0].start(self)
+        self._k = self._start_from(0)
+        self.progress = (Progress(Status.RUNNING, self._phases[self._k].name) if self._k < len(self._phases)
+                         else Progress(Status.SUCCEEDED, self._phases[-1].name))   # nothing to do at all
 
     def tick(self, dt: float, target_xy=None) -> Progress:
         if self.progress.status is not Status.RUNNING:
@@ -180,18 +181,26 @@ class Primitive:
             self.progress = Progress(Status.FAILED, phase.name, reason, self._t_total)
         elif status is Status.SUCCEEDED:
             self._after(phase)
-            self._k += 1
+            self._k = self._start_from(self._k + 1)
             if self._k >= len(self._phases) and self._failure is not None:
                 self.progress = Progress(Status.FAILED, self._failure.phase, self._failure.reason, self._t_total)
             elif self._k >= len(self._phases):
                 self.progress = Progress(Status.SUCCEEDED, phase.name, "", self._t_total)
             else:
                 self._t = 0.0
-                self._phases[self._k].start(self)
                 self.progress = Progress(Status.RUNNING, self._phases[self._k].name, "", self._t_total)
         else:
             self.progress = Progress(Status.RUNNING, phase.name, "", self._t_total)
         return self.progress
+
+    def _start_from(self, k: int) -> int:
+        """Start the phases from ``k`` on until one has something to do (`Phase.idle`); its index."""
+        while k < len(self._phases):
+            self._phases[k].start(self)
+            if not self._phases[k].idle:
+                break
+            k += 1
+        return k
 
     def interrupted(self, phase: Phase) -> str:
         """Why ``phase`` must stop now, from what is perceived ("" to go on); its fallback then ends it safely."""

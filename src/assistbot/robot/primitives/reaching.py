@@ -8,7 +8,7 @@ import mink
 import numpy as np
 
 from assistbot.robot import poses
-from assistbot.robot.phases import Grip, Move, Open, Phase, Rise
+from assistbot.robot.phases import Grip, Move, Open, Phase, Rise, Unroll
 from assistbot.robot.primitives.geometry import PRE_GRASP_BACK, side_grasp_pose
 
 if TYPE_CHECKING:
@@ -23,11 +23,11 @@ def retract_phases(over_at: float | None = None) -> list[Phase]:
     """Up, then back to the ready pose; with ``over_at`` (world z, m) the hand first rises to that
     height and crosses to above the ready pose there, so it passes over the objects on its way."""
     if over_at is None:
-        return [Rise("rise", READY_POSE_POS[2]),
+        return [Rise("rise", READY_POSE_POS[2]), Unroll(),
                 Move("retract", lambda p: poses.pose(mink.SO3.identity(), READY_POSE_POS), duration=1.2, tolerance=0.04)]
     above = READY_POSE_POS.copy()
     above[2] = max(above[2], over_at)
-    return [Rise("rise", over_at),
+    return [Rise("rise", over_at), Unroll(),
             Move("withdraw over", lambda p: poses.pose(mink.SO3.identity(), above), duration=1.2, tolerance=0.04),
             Move("retract", lambda p: poses.pose(mink.SO3.identity(), READY_POSE_POS), duration=0.6, tolerance=0.04)]
 
@@ -38,6 +38,7 @@ def reach_and_grasp_phases(prim: Primitive, height: float | None = None, held_up
     return [
         Open("open"),
         Rise("rise", READY_POSE_POS[2]),
+        Unroll(),
         Move("ready", lambda p: poses.pose(mink.SO3.identity(), READY_POSE_POS), duration=1.2, tolerance=0.04),
         Move("above pre-grasp", lambda p: side_grasp_pose(p, back=PRE_GRASP_BACK, up=0.10, height=height, held_up=held_up), duration=1.5,
              reach_out=held_up),
