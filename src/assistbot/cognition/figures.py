@@ -62,13 +62,12 @@ def _mark_decisions(history: History, axes) -> None:
 
 def write_figures(name: str, recorder: Any, history: History, out: str | Path) -> list[Path]:
     """All figures of a field recording into ``out``: ASL, AEL, IL, AML (input + activity), CSGL, OML."""
-    out = Path(out)
-    history = list(history)
-    layers = (("ASL", "action simulation layer (ASL) - input and activity"),
-              ("AEL", "action execution layer (AEL) - input and activity"))
-    paths = [plot_layer(recorder, history, layer, out / f"{layer.lower()}.png", f"{name}: {what}") for layer, what in layers]
-    paths.append(plot_csgl(recorder, history, out / "csgl.png", f"{name}: CSGL past / present / future"))
-    for layer, what in (("IL", "intention layer (IL)"), ("AML", "action monitoring layer (AML)"),
-                        ("OML", "object memory layer (OML)")):
-        paths.append(plot_layer(recorder, history, layer, out / f"{layer.lower()}.png", f"{name}: {what}"))
-    return paths
+    out, h = Path(out), list(history)
+    return [
+        plot_layer(recorder, h, "ASL", out / "asl.png", f"{name}: action simulation layer (ASL) - input and activity"),
+        plot_layer(recorder, h, "AEL", out / "ael.png", f"{name}: action execution layer (AEL) - input and activity"),
+        plot_csgl(recorder, h, out / "csgl.png", f"{name}: CSGL past / present / future"),
+        plot_layer(recorder, h, "IL", out / "il.png", f"{name}: intention layer (IL)"),
+        plot_layer(recorder, h, "AML", out / "aml.png", f"{name}: action monitoring layer (AML)"),
+        plot_layer(recorder, h, "OML", out / "oml.png", f"{name}: object memory layer (OML)"),
+    ]

@@ -50,3 +50,9 @@ def interpolate(a: mink.SE3, b: mink.SE3, s: float) -> mink.SE3:
 def approach_axis(rot: mink.SO3) -> np.ndarray:
     """World direction from the palm toward the object (the gripper's -x)."""
     return -rot.as_matrix()[:, 0]
+
+
+def upside_down(rot: mink.SO3) -> bool:
+    """The hand rolled past a quarter turn about its approach axis (its z axis points down): it has turned
+    the glass in it."""
+    return bool(rot.as_matrix()[2, 2] < 0.0)

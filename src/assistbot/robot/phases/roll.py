@@ -58,5 +58,4 @@ class Unroll(Roll):
 
     def start(self, prim):
         super().start(prim)
-        upside_down = self.origin.rotation().as_matrix()[2, 2] < 0.0
-        self.idle = not upside_down or prim.carrying
+        self.idle = not poses.upside_down(self.origin.rotation()) or prim.carrying

@@ -85,4 +85,4 @@ def side_grasp_pose(prim: Primitive, back: float = 0.0, up: float = 0.0, roll: f
 def half_turn(p: Primitive) -> float:
     """The hand's roll about its approach axis to the nearest half turn: 0, or pi once it has turned the
     glass in it. Carried either way, what it holds stands upright."""
-    return 0.0 if p.robot.commanded_tcp_pose().rotation().as_matrix()[2, 2] >= 0.0 else math.pi
+    return math.pi if poses.upside_down(p.robot.commanded_tcp_pose().rotation()) else 0.0
