@@ -19,7 +19,8 @@ class UserError(Exception):
         super().__init__(self.line())
 
     def line(self) -> str:
-        return f"error: {self.where}: {self.key}: {self.message}"
+        # one line whatever the message quotes (a YAML parser's report spans several)
+        return " ".join(f"error: {self.where}: {self.key}: {self.message}".split())
 
 
 def read_yaml(path, what: str = "file"):
@@ -33,6 +34,8 @@ def read_yaml(path, what: str = "file"):
         text = path.read_text(encoding="utf-8")
     except OSError as exc:
         raise UserError(str(path), "-", f"cannot read the {what}: {exc.strerror}") from None
+    except UnicodeDecodeError as exc:
+        raise UserError(str(path), f"byte {exc.start}", "not a text file (UTF-8 expected)") from None
     try:
         return yaml.safe_load(text)
     except yaml.YAMLError as exc:

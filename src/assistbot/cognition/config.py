@@ -262,3 +262,23 @@ class CognitionConfig:
 
     def copy(self) -> "CognitionConfig":
         return CognitionConfig(self.data)
+
+
+def check_overrides(overrides: Mapping[str, Any], where: str) -> None:
+    """Overrides of the field architecture (paths without ``cognition.``): each a number the configuration takes,
+    all together a network the field library accepts (finite, stable steps). A mistake is a UserError naming the
+    override's path."""
+    from assistbot.fields.errors import FieldError
+    from assistbot.fields.spec import NetworkSpec
+
+    cfg = CognitionConfig()
+    for path, value in overrides.items():
+        try:
+            cfg.set(path, value)
+        except UserError as exc:
+            raise UserError(where, f"cognition.{path}", exc.message) from None
+    try:
+        NetworkSpec.from_dict(cfg.network_dict())
+    except FieldError as exc:
+        named = [p for p in overrides if p == exc.key or p.endswith("." + exc.key)] or list(overrides)
+        raise UserError(where, ", ".join(f"cognition.{p}" for p in named), f"{exc.message} (in {exc.where})") from None

@@ -35,14 +35,21 @@ def parse_sets(sets: list[str]) -> dict:
         if not eq or not path.strip():
             raise UserError("--set", s, "expected PATH=VALUE, e.g. cognition.k=0.9")
         try:
-            out[path.strip()] = yaml.safe_load(value)
+            v = yaml.safe_load(value)
         except yaml.YAMLError:
             raise UserError("--set", path, f"cannot read the value {value!r}") from None
+        if isinstance(v, str):   # YAML 1.1 reads 1e-3 (no dot) as text; a user means the number, as a sweep reads it
+            try:
+                v = float(v)
+            except ValueError:
+                pass
+        out[path.strip()] = v
     return out
 
 
 def run(args: argparse.Namespace) -> int:
     from assistbot.episode import run_scenario
+    from assistbot.episode.builder import split_overrides
     from assistbot.scenario import load_scenario
 
     scenario = load_scenario(args.scenario)
@@ -54,6 +61,7 @@ def run(args: argparse.Namespace) -> int:
         agent_factory(args.agent, "--agent")
         scenario = dataclasses.replace(scenario, agent=args.agent)
     overrides = parse_sets(args.sets)
+    split_overrides(overrides, "--set", scenario.agent)   # a mistake names --set, not the scenario file
     out = args.out or Path("render") / scenario.name
     result = run_scenario(scenario, out=out, perception=args.perception, seed=args.seed, overrides=overrides,
                           video=not args.no_video, progress=True)

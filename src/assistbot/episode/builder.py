@@ -31,26 +31,31 @@ class Overrides:
     perturb: dict[str, float] = field(default_factory=dict)
 
 
-def split_overrides(overrides: dict[str, Any], where: str, agent: str = "dnf") -> Overrides:
-    """Dotted paths -> the parts' overrides; an unknown path names the closest valid ones. ``cognition.*``
-    paths are the field architecture's, checked here for ``agent`` dnf; another agent's factory checks its own."""
+def override_paths() -> list[str]:
+    """Every dotted path an override may name (``cognition.*`` as the field architecture has them)."""
     from assistbot.cognition.config import CognitionConfig
     from assistbot.human.script import PARAMS as HUMAN_PARAMS
 
+    return (["cognition." + p for p in CognitionConfig().paths()] + [f"human.{p}" for p in HUMAN_PARAMS]
+            + list(VISION_PARAMS) + list(PERTURB_PARAMS))
+
+
+def split_overrides(overrides: dict[str, Any], where: str, agent: str = "dnf") -> Overrides:
+    """Dotted paths -> the parts' overrides; an unknown path names the closest valid ones. ``cognition.*``
+    paths are the field architecture's, checked here for ``agent`` dnf; another agent's factory checks its own."""
+    from assistbot.cognition.config import check_overrides as check_cognition
+    from assistbot.human.script import PARAMS as HUMAN_PARAMS, check_param as check_human_param
+
     out = Overrides()
-    cog_paths = ["cognition." + p for p in CognitionConfig().paths()]
-    valid = cog_paths + [f"human.{p}" for p in HUMAN_PARAMS] + list(VISION_PARAMS) + list(PERTURB_PARAMS)
+    valid = override_paths()
+    cog_paths = [p for p in valid if p.startswith("cognition.")]
     for path, value in overrides.items():
         if path.startswith("cognition.") and agent != "dnf":
             out.cognition[path[len("cognition."):]] = value
         elif path in cog_paths:
-            try:
-                CognitionConfig().set(path[len("cognition."):], value)
-            except UserError as exc:
-                raise UserError(where, path, exc.message) from None
             out.cognition[path[len("cognition."):]] = value
         elif path.startswith("human.") and path[6:] in HUMAN_PARAMS:
-            out.human[path[6:]] = value
+            out.human[path[6:]] = check_human_param(path[6:], value, where)
         elif path in VISION_PARAMS:
             out.vision[VISION_PARAMS[path]] = check_vision_value(path, value, where)
         elif path in PERTURB_PARAMS:
@@ -58,6 +63,8 @@ def split_overrides(overrides: dict[str, Any], where: str, agent: str = "dnf") -
         else:
             close = difflib.get_close_matches(path, valid, n=3)
             raise UserError(where, path, "unknown parameter path" + (f"; did you mean {', '.join(close)}?" if close else ""))
+    if agent == "dnf" and out.cognition:
+        check_cognition(out.cognition, where)
     return out
 
 

@@ -109,31 +109,7 @@ def parse_human(mapping: Any, where: str = "scenario") -> HumanConfig:
     profile = str(mapping.get("profile", "active"))
     if profile not in PROFILES:
         raise UserError(where, "human.profile", f"unknown profile {profile!r}; use one of {', '.join(PROFILES)}")
-    overrides: dict = {}
-    for k in PARAMS:
-        if k not in mapping:
-            continue
-        v = mapping[k]
-        if k == "grip":
-            if str(v).lower() not in GRIPS:
-                raise UserError(where, "human.grip", f"unknown grip {v!r}; use ag (above) or sg (side)")
-            overrides[k] = GRIPS[str(v).lower()]
-            continue
-        try:
-            v = float(v)
-        except (TypeError, ValueError):
-            raise UserError(where, f"human.{k}", f"expected a number, got {v!r}") from None
-        if k == "wrong_grip" and not 0.0 <= v <= 1.0:
-            raise UserError(where, "human.wrong_grip", f"a chance between 0 and 1, got {v:g}")
-        if k == "speed" and not 0.02 <= v <= 1.0:
-            raise UserError(where, "human.speed", f"mean hand speed in m/s between 0.02 and 1.0, got {v:g}")
-        if k in ("reaction_delay", "hesitation") and not 0.0 <= v <= 10.0:
-            raise UserError(where, f"human.{k}", f"seconds between 0 and 10, got {v:g}")
-        if k.startswith("hold_out_d"):
-            limit = HOLD_OUT_REGION["xyz".index(k[-1])]
-            if not -limit <= v <= limit:
-                raise UserError(where, f"human.{k}", f"metres from the nominal hold-out point within ±{limit:g}, got {v:g}")
-        overrides[k] = v
+    overrides = {k: check_param(k, mapping[k], where) for k in PARAMS if k in mapping}
     script = mapping.get("script", [])
     if script is None:
         script = []
@@ -141,6 +117,32 @@ def parse_human(mapping: Any, where: str = "scenario") -> HumanConfig:
         raise UserError(where, "human.script", "must be a list of steps such as {do: grasp, object: bottle}")
     steps = tuple(_parse_step(s, where, f"human.script[{i}]") for i, s in enumerate(script))
     return HumanConfig(profile, overrides, steps)
+
+
+def check_param(k: str, v: Any, where: str) -> Any:
+    """One of the person's parameters (PARAMS), checked; the value the person takes (a grip's short name, else
+    a float). The one check for a scenario's ``human:`` block, ``--set human.*`` and a sweep's values."""
+    if k == "grip":
+        if str(v).lower() not in GRIPS:
+            raise UserError(where, "human.grip", f"unknown grip {v!r}; use ag (above) or sg (side)")
+        return GRIPS[str(v).lower()]
+    if isinstance(v, bool) or not isinstance(v, (int, float, str)):
+        raise UserError(where, f"human.{k}", f"expected a number, got {v!r}")
+    try:
+        v = float(v)
+    except (TypeError, ValueError):
+        raise UserError(where, f"human.{k}", f"expected a number, got {v!r}") from None
+    if k == "wrong_grip" and not 0.0 <= v <= 1.0:
+        raise UserError(where, "human.wrong_grip", f"a chance between 0 and 1, got {v:g}")
+    if k == "speed" and not 0.02 <= v <= 1.0:
+        raise UserError(where, "human.speed", f"mean hand speed in m/s between 0.02 and 1.0, got {v:g}")
+    if k in ("reaction_delay", "hesitation") and not 0.0 <= v <= 10.0:
+        raise UserError(where, f"human.{k}", f"seconds between 0 and 10, got {v:g}")
+    if k.startswith("hold_out_d"):
+        limit = HOLD_OUT_REGION["xyz".index(k[-1])]
+        if not -limit <= v <= limit:
+            raise UserError(where, f"human.{k}", f"metres from the nominal hold-out point within ±{limit:g}, got {v:g}")
+    return v
 
 
 def _parse_step(s: Any, where: str, key: str) -> Step:

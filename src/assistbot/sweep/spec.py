@@ -55,12 +55,10 @@ _DISTRIBUTIONS = ("uniform", "loguniform", "normal", "randint", "choice")
 
 
 def valid_paths() -> list[str]:
-    """Every parameter path a sweep may vary."""
-    from assistbot.cognition.config import CognitionConfig
-    from assistbot.human.script import PARAMS as HUMAN_PARAMS
+    """Every parameter path a sweep may vary: the overrides' and the scenario's own."""
+    from assistbot.episode.builder import override_paths
 
-    return (["cognition." + p for p in CognitionConfig().paths()] + [f"human.{p}" for p in HUMAN_PARAMS]
-            + list(VISION_PARAMS) + list(PERTURB_PARAMS) + list(OBJECT_PATHS) + list(SCENARIO_PATHS))
+    return override_paths() + list(OBJECT_PATHS) + list(SCENARIO_PATHS)
 
 
 def check_path(path: str, where: str) -> None:
@@ -210,14 +208,9 @@ def parse_values(path: str, spec: Any, where: str = "--param", sample_seed: int 
 def check_value(path: str, value: Any, where: str) -> Any:
     """Validate one value for a non-object path; return the value an episode override takes."""
     if path.startswith("cognition."):
-        from assistbot.cognition.config import CognitionConfig
+        from assistbot.cognition.config import check_overrides
 
-        if isinstance(value, bool) or not isinstance(value, (int, float)):
-            raise UserError(where, path, f"must be a number, got {value!r}")
-        try:
-            CognitionConfig().set(path[len("cognition."):], value)
-        except UserError as exc:
-            raise UserError(where, path, exc.message) from None
+        check_overrides({path[len("cognition."):]: value}, where)
         return value
     if path == "agent":
         from assistbot.agents import agent_factory
@@ -233,13 +226,9 @@ def check_value(path: str, value: Any, where: str) -> Any:
             raise UserError(where, path, f"unknown profile {value!r}; use one of {', '.join(PROFILES)}")
         return value
     if path.startswith("human."):
-        from assistbot.human.script import parse_human
+        from assistbot.human.script import check_param
 
-        try:
-            cfg = parse_human({path[len("human."):]: value}, where)
-        except UserError as exc:
-            raise UserError(where, path, exc.message) from None
-        return cfg.overrides[path[len("human."):]]
+        return check_param(path[len("human."):], value, where)
     if path in VISION_PARAMS:
         return check_vision_value(path, value, where)
     if path in PERTURB_PARAMS:
