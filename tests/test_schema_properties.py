@@ -38,6 +38,11 @@ def _fresh():
         yield Path(d)
 
 
+#: a small valid scenario
+SMALL = {"name": "t", "objects": {"bottle": {"zone": "RWS", "state": "closed"}, "glass": {"zone": "HWS", "state": "empty"}},
+         "human": {"profile": "passive"}}
+
+
 class _Built(Exception):
     """Raised instead of running the episode: everything before it (loading, checking, building) succeeded."""
 
@@ -163,6 +168,39 @@ def test_a_file_that_is_not_a_scenario_is_one_line(blob):
         _expect_one_line(status, err, str(path), out)
 
 
+# -- sweep files ------------------------------------------------------------------------------------------------
+@st.composite
+def sweep_files(draw) -> dict:
+    """A sweep file over the small scenario `s.yaml` beside it, maybe with one thing wrong."""
+    data = {"scenario": "s.yaml", "params": {draw(PATHS): draw(st.lists(st.floats(0.0, 1.0), min_size=1, max_size=3))},
+            "seeds": draw(st.integers(1, 3)), "perception": draw(st.sampled_from(["vision", "oracle"]))}
+    if draw(st.booleans()):
+        path = draw(st.sampled_from(_leaf_paths(data)))
+        parent = data
+        for k in path[:-1]:
+            parent = parent[k]
+        parent[path[-1]] = draw(JUNK)
+    return data
+
+
+@SETTINGS
+@given(data=sweep_files())
+def test_a_sweep_file_is_listed_or_refused_in_one_line(data):
+    try:
+        text = yaml.safe_dump(data)
+    except yaml.representer.RepresenterError:
+        return
+    with _fresh() as tmp:
+        (tmp / "s.yaml").write_text(yaml.safe_dump(SMALL))
+        path, out = tmp / "sweep.yaml", tmp / "out"
+        path.write_text(text)
+        status, err = _run_cli(["sweep", str(path), "--out", str(out), "--dry-run"])
+        if status != 0:
+            assert "Traceback" not in err, err
+            assert status == 2 and err.count("\n") == 1 and err.startswith("error: "), (status, err)
+            assert not out.exists()
+
+
 # -- --set and --param -----------------------------------------------------------------------------------------
 #: text a user might type after PATH=
 VALUE_TEXT = st.one_of(st.text(max_size=10), st.floats(allow_nan=True, allow_infinity=True).map(repr),
@@ -172,9 +210,7 @@ VALUE_TEXT = st.one_of(st.text(max_size=10), st.floats(allow_nan=True, allow_inf
 def _run_with_set(tmp: Path, assignment: str) -> tuple[int | None, str, Path]:
     """`assistbot run` of a small valid scenario with ``--set ASSIGNMENT``: (status, stderr, the output folder)."""
     scenario, out = tmp / "s.yaml", tmp / "out"
-    scenario.write_text(yaml.safe_dump({"name": "t", "objects": {"bottle": {"zone": "RWS", "state": "closed"},
-                                                                 "glass": {"zone": "HWS", "state": "empty"}},
-                                        "human": {"profile": "passive"}}))
+    scenario.write_text(yaml.safe_dump(SMALL))
     status, err = _run_cli(["run", str(scenario), "--out", str(out), "--no-video", "--perception", "oracle", "--set", assignment])
     return status, err, out
 
