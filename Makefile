@@ -31,7 +31,7 @@ debs:
 # vision: the robot sees through its head cameras; PERCEPTION=oracle reads ground truth (labelled as such).
 PERCEPTION ?= vision
 demo: $(STAMP)
-	$(BIN)/assistbot run paper-fig3-4 --perception $(PERCEPTION) || [ $$? -eq 1 ]
+	$(BIN)/assistbot run paper-fig3-4 --perception $(PERCEPTION) --force || [ $$? -eq 1 ]
 
 test: $(STAMP)
 	$(BIN)/python -m pytest -m "not slow" -q

@@ -60,14 +60,20 @@ def _mark_decisions(history: History, axes) -> None:
                              va="top", ha="right", color="tab:red")
 
 
+#: the figures `write_figures` writes: file -> (layer, what it shows); the CSGL's three layers share one
+FIGURES = {
+    "asl.png": ("ASL", "action simulation layer (ASL) - input and activity"),
+    "ael.png": ("AEL", "action execution layer (AEL) - input and activity"),
+    "csgl.png": ("CSGL", "CSGL past / present / future"),
+    "il.png": ("IL", "intention layer (IL)"),
+    "aml.png": ("AML", "action monitoring layer (AML)"),
+    "oml.png": ("OML", "object memory layer (OML)"),
+}
+
+
 def write_figures(name: str, recorder: Any, history: History, out: str | Path) -> list[Path]:
-    """All figures of a field recording into ``out``: ASL, AEL, IL, AML (input + activity), CSGL, OML."""
+    """All figures of a field recording into ``out`` (FIGURES): ASL, AEL, IL, AML (input + activity), CSGL, OML."""
     out, h = Path(out), list(history)
-    return [
-        plot_layer(recorder, h, "ASL", out / "asl.png", f"{name}: action simulation layer (ASL) - input and activity"),
-        plot_layer(recorder, h, "AEL", out / "ael.png", f"{name}: action execution layer (AEL) - input and activity"),
-        plot_csgl(recorder, h, out / "csgl.png", f"{name}: CSGL past / present / future"),
-        plot_layer(recorder, h, "IL", out / "il.png", f"{name}: intention layer (IL)"),
-        plot_layer(recorder, h, "AML", out / "aml.png", f"{name}: action monitoring layer (AML)"),
-        plot_layer(recorder, h, "OML", out / "oml.png", f"{name}: object memory layer (OML)"),
-    ]
+    return [plot_csgl(recorder, h, out / file, f"{name}: {what}") if layer == "CSGL"
+            else plot_layer(recorder, h, layer, out / file, f"{name}: {what}")
+            for file, (layer, what) in FIGURES.items()]

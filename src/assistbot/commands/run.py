@@ -22,6 +22,8 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
                    help="the robot's mind instead of the scenario's: dnf (the field architecture), fsm (the "
                         "state-machine baseline) or package.module:factory")
     p.add_argument("--no-video", action="store_true", help="skip the video (faster)")
+    p.add_argument("--force", action="store_true",
+                   help="replace an earlier run in the output folder (without it, such a folder is refused)")
 
 
 def parse_sets(sets: list[str]) -> dict:
@@ -50,6 +52,8 @@ def parse_sets(sets: list[str]) -> dict:
 def run(args: argparse.Namespace) -> int:
     from assistbot.episode import run_scenario
     from assistbot.episode.builder import split_overrides
+    from assistbot.episode.outputs import PARTIAL, earlier_run
+    from assistbot.errors import UserError
     from assistbot.scenario import load_scenario
 
     scenario = load_scenario(args.scenario)
@@ -63,6 +67,10 @@ def run(args: argparse.Namespace) -> int:
     overrides = parse_sets(args.sets)
     split_overrides(overrides, "--set", scenario.agent)   # a mistake names --set, not the scenario file
     out = args.out or Path("render") / scenario.name
+    earlier = earlier_run(out)
+    if earlier and not args.force:
+        state = "an unfinished run (PARTIAL)" if earlier == PARTIAL else "an earlier run (summary.json)"
+        raise UserError(str(out), "--out", f"holds {state}; pass --force to replace it, or name another folder with --out")
     result = run_scenario(scenario, out=out, perception=args.perception, seed=args.seed, overrides=overrides,
                           video=not args.no_video, progress=True)
     verdict = f"drank at t = {result.time_to_drink:.1f} s" if result.success else f"did not drink ({result.end_reason})"

@@ -16,9 +16,20 @@ from assistbot.scenario import Scenario, load_scenario
 def run_scenario(spec: str | Path | Scenario, out: str | Path | None = None, perception: str = "vision",
                  seed: int | None = None, overrides: dict[str, Any] | None = None, video: bool = True,
                  progress: bool = False):
-    """Run one episode; with ``out``, write log.jsonl, summary.json, subtitles.srt, figures and video.mp4 there."""
+    """Run one episode; with ``out``, write log.jsonl, summary.json, subtitles.srt, figures and video.mp4 there
+    (replacing an earlier run's; `assistbot.episode.outputs` says in which order, and how a killed run shows)."""
     from assistbot.episode.builder import build_episode
-    from assistbot.episode.outputs import FRAME_EVERY, VideoRecorder, add_audio, write_figures, write_log, write_srt_for, write_summary
+    from assistbot.episode.outputs import (
+        FRAME_EVERY,
+        VideoRecorder,
+        add_audio,
+        claim,
+        finish,
+        write_figures,
+        write_log,
+        write_srt_for,
+        write_summary,
+    )
     from assistbot.interfaces import FieldAgent
 
     scenario = spec if isinstance(spec, Scenario) else load_scenario(spec)
@@ -27,7 +38,7 @@ def run_scenario(spec: str | Path | Scenario, out: str | Path | None = None, per
     out_dir = Path(out) if out is not None else None
     rec_video = None
     if out_dir is not None:
-        out_dir.mkdir(parents=True, exist_ok=True)
+        claim(out_dir)
         if video:
             rec_video = VideoRecorder(ep, out_dir / "video.mp4")
             ep.on_frame = rec_video
@@ -61,4 +72,5 @@ def run_scenario(spec: str | Path | Scenario, out: str | Path | None = None, per
             audio = add_audio(ep, out_dir / "video.mp4", rec_video.writer.frames / rec_video.writer.fps)
         figures = [str(p) for p in write_figures(ep, recorder, out_dir)]
         write_summary(result, out_dir / "summary.json", {"figures": figures, "video_has_audio": audio})
+        finish(out_dir)
     return result

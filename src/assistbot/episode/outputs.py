@@ -1,18 +1,24 @@
 """What a run leaves in its folder: log.jsonl, summary.json, subtitles.srt, the seed-style figures, video.mp4.
 
-Files are written as soon as their content is final; the video is written
-frame by frame during the run and gets its audio track at the end.
+A run folder is complete or says it is not. `claim` writes the marker PARTIAL first, then removes an
+earlier run's files; the video is written frame by frame during the run (and gets its audio track at
+the end); log, subtitles and figures follow when the episode ends; summary.json is written last, each
+file to a temporary name and renamed into place; then the marker goes. A run killed at any moment
+leaves the earlier run's complete files (killed before `claim`) or a folder with PARTIAL in it.
 """
 
 from __future__ import annotations
 
 import json
+import os
+import time
 import warnings
 from pathlib import Path
 
 import numpy as np
 
 from assistbot.cognition.architecture import LAYERS_SHOWN
+from assistbot.cognition.figures import FIGURES
 from assistbot.episode.runner import Episode, EpisodeResult
 from assistbot.interfaces import FieldAgent
 from assistbot.speech import espeak_available, mux, synthesize, write_srt
@@ -21,6 +27,44 @@ from assistbot.video import VideoWriter, compose_frame
 VIDEO_FPS = 10
 FRAME_EVERY = 1.0 / VIDEO_FPS  # simulated seconds per frame: the video plays in real time
 PANEL_NAMES = {"CSGL_past": "CSGL past", "CSGL_present": "CSGL present", "CSGL_future": "CSGL future"}
+
+
+#: the marker of a run that has not finished (running, killed or interrupted): its files are incomplete
+PARTIAL = "PARTIAL"
+SUMMARY = "summary.json"
+#: every file a run writes (with the temporaries of the audio track), so that a new run leaves none of an earlier one
+RUN_FILES = ("video.mp4", "video.wav", "video.muxed.mp4", "log.jsonl", "subtitles.srt", *FIGURES, SUMMARY)
+
+
+def earlier_run(out: Path) -> str | None:
+    """What shows that ``out`` holds a run (its summary or its PARTIAL marker), or None."""
+    for name in (SUMMARY, PARTIAL):
+        if (out / name).exists():
+            return name
+    return None
+
+
+def claim(out: Path) -> None:
+    """Make ``out`` the folder of a run starting now: the PARTIAL marker first, then an earlier run's files go."""
+    out.mkdir(parents=True, exist_ok=True)
+    _replace_text(out / PARTIAL, f"this run has not finished: started {time.strftime('%Y-%m-%d %H:%M:%S')}, "
+                                 f"process {os.getpid()}; the files here are incomplete\n")
+    for name in RUN_FILES:
+        (out / name).unlink(missing_ok=True)
+        (out / f"{name}.tmp").unlink(missing_ok=True)
+
+
+def finish(out: Path) -> None:
+    """The run's files are all in place (summary.json last): the folder is complete."""
+    (out / PARTIAL).unlink(missing_ok=True)
+
+
+def _replace_text(path: Path, text: str) -> Path:
+    """Write ``text`` to ``path`` whole or not at all: to a temporary name, then renamed into place."""
+    tmp = path.with_name(path.name + ".tmp")
+    tmp.write_text(text, encoding="utf-8")
+    os.replace(tmp, path)
+    return path
 
 
 class VideoRecorder:
@@ -60,10 +104,8 @@ class VideoRecorder:
 
 
 def write_log(episode: Episode, path: Path) -> Path:
-    with path.open("w", encoding="utf-8") as f:
-        for row in sorted(episode.log, key=lambda r: r["t"]):
-            f.write(json.dumps(row, default=_jsonable) + "\n")
-    return path
+    rows = sorted(episode.log, key=lambda r: r["t"])
+    return _replace_text(path, "".join(json.dumps(row, default=_jsonable) + "\n" for row in rows))
 
 
 def _jsonable(v):
@@ -78,8 +120,7 @@ def write_summary(result: EpisodeResult, path: Path, extra: dict | None = None) 
     data = result.summary()
     if extra:
         data.update(extra)
-    path.write_text(json.dumps(data, indent=2, default=_jsonable) + "\n", encoding="utf-8")
-    return path
+    return _replace_text(path, json.dumps(data, indent=2, default=_jsonable) + "\n")
 
 
 def write_figures(episode: Episode, recorder, out: Path) -> list[Path]:
@@ -109,4 +150,6 @@ def add_audio(episode: Episode, video: Path, duration: float) -> bool:
 
 
 def write_srt_for(episode: Episode, path: Path) -> Path:
-    return write_srt(list(episode.speech), path)
+    tmp = write_srt(list(episode.speech), path.with_name(path.name + ".tmp"))
+    os.replace(tmp, path)
+    return path
