@@ -93,7 +93,8 @@ class DrinkingTask:
         if self.judge.verdict(t, drank) is None:
             return False
         if self.judge.reason != "drink":
-            self._event(t, "end", reason=self.judge.end_reason(), **self.judge.detail)
+            # diverged: the physics may have reset its clock; the end is dated at the last good tick
+            self._event(self.judge.detail.get("at", t), "end", reason=self.judge.end_reason(), **self.judge.detail)
         return True
 
     def outcome(self) -> dict:

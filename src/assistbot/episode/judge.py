@@ -11,7 +11,9 @@ person. `end_reason` is one of END_REASONS, "object fell" naming the object:
   object fell  the bottle or the glass lies on its side, or fell off the table, and stays there; the
                episode runs on until the robot says it cannot go on (it must see the fall itself), at
                most NOTICE_SECONDS, and ``robot_said`` records whether it did
-  diverged     the physics produced NaN or an unstable acceleration
+  diverged     the physics produced NaN, MuJoCo found the state unusable (bad position, velocity or
+               acceleration: it then resets the state), or something moves faster than MAX_SPEED;
+               ``last_good`` in the detail is the state at the last tick before it, by name
   time limit   the scenario's time ran out
 """
 
@@ -41,6 +43,11 @@ NOTICE_SECONDS = 5.0
 FALL_TAGS = {task.UTTERANCES["AML"][item].tag: obj for obj, item in task.FALLS.items()}
 #: robot joint speed (rad/s) above which the robot counts as moving
 MOVING_SPEED = 0.05
+#: m/s or rad/s: no part of this scene moves this fast unless the physics has blown up (an exploding contact)
+MAX_SPEED = 1000.0
+#: MuJoCo's warnings that it found the state unusable (and reset it)
+_BAD_STATE = {mujoco.mjtWarning.mjWARN_BADQPOS: "bad position", mujoco.mjtWarning.mjWARN_BADQVEL: "bad velocity",
+              mujoco.mjtWarning.mjWARN_BADQACC: "bad acceleration"}
 
 
 class Judge:
@@ -60,6 +67,7 @@ class Judge:
         self._said_fell: set[str] = set()   # the objects the robot has said fell over
         self.reason: str | None = None
         self.detail: dict = {}
+        self._good_t, self._good_qpos = world.time, world.data.qpos.copy()
 
     # -- events ------------------------------------------------------------------------------
     def decided(self, t: float, action: str) -> None:
@@ -106,8 +114,13 @@ class Judge:
         d = self.world.data
         if drank:
             self._end("drink")
-        if self.reason is None and (not np.isfinite(d.qpos).all() or d.warning[mujoco.mjtWarning.mjWARN_BADQACC].number):
-            self._end("diverged")
+        if self.reason is None:
+            cause = self._divergence()
+            if cause is None:
+                self._good_t = t
+                np.copyto(self._good_qpos, d.qpos)
+            else:
+                self._end("diverged", cause=cause, at=round(self._good_t, 3), last_good=self._named_state(self._good_qpos))
         if self.reason is None:
             lying = set(self.fallen())
             self._lying_since = {o: self._lying_since.get(o, t) for o in lying}
@@ -123,6 +136,33 @@ class Judge:
         if self.reason is None and t >= self.time_limit:
             self._end("time limit")
         return self.reason
+
+    def _divergence(self) -> str | None:
+        """Why the physics cannot be trusted any more, or None."""
+        d = self.world.data
+        for warning, what in _BAD_STATE.items():
+            if d.warning[warning].number:
+                return f"MuJoCo: {what} (state reset)"
+        if not (np.isfinite(d.qpos).all() and np.isfinite(d.qvel).all()):
+            return "NaN in the state"
+        fastest = int(np.argmax(np.abs(d.qvel)))
+        if abs(d.qvel[fastest]) > MAX_SPEED:
+            m = self.world.model
+            return f"{m.body(m.dof_bodyid[fastest]).name} moves at {abs(d.qvel[fastest]):.3g} (> {MAX_SPEED:g})"
+        return None
+
+    def _named_state(self, qpos: np.ndarray) -> dict:
+        """A state by name: hinge and slide joints' positions, free bodies' positions (the liquid left out)."""
+        m, out = self.world.model, {}
+        for j in range(m.njnt):
+            a, kind = m.jnt_qposadr[j], int(m.jnt_type[j])
+            if kind == mujoco.mjtJoint.mjJNT_FREE:
+                body = m.body(m.jnt_bodyid[j]).name
+                if body in catalogue.BY_NAME:
+                    out[body] = [round(float(v), 4) for v in qpos[a:a + 3]]
+            elif kind in (mujoco.mjtJoint.mjJNT_HINGE, mujoco.mjtJoint.mjJNT_SLIDE):
+                out[m.joint(j).name] = round(float(qpos[a]), 4)
+        return out
 
     def end_reason(self) -> str:
         """The end reason as summaries print it: 'object fell: bottle' names the object."""

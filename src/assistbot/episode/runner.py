@@ -134,7 +134,8 @@ class Episode:
             over = self.task.stepped(w.time, CONTROL_DT)
             self._log_task_events()
             if over:
-                return self._result()
+                # a physics that blew up resets its clock to 0: the episode then ended at this tick
+                return self._result(w.time if w.time >= t else t)
 
     def _perceive_and_decide(self, t: float) -> Decision:
         c0 = time.perf_counter()
@@ -205,7 +206,7 @@ class Episode:
             "human": self.partner.appearance().behaviour,
         })
 
-    def _result(self) -> EpisodeResult:
+    def _result(self, t_end: float) -> EpisodeResult:
         history = self.agent.decisions()
         decisions = [(t, a) for t, kind, a in history if kind == "decide"]
         releases = [(t, kind, a) for t, kind, a in history if kind != "decide"]
@@ -213,7 +214,7 @@ class Episode:
         ends = ("start", Status.SUCCEEDED.value, Status.FAILED.value)
         return EpisodeResult(
             scenario=self.scenario.name, seed=self.seed, perception=self.perception.name,
-            success=end_reason == "drink", end_reason=end_reason, time=self.world.time,
+            success=end_reason == "drink", end_reason=end_reason, time=t_end,
             decisions=decisions, releases=releases,
             utterances=[u.to_dict() for u in self.speech],
             human_events=[{"t": round(e.t, 3), "kind": e.kind, "what": e.what} for e in self.partner.log if e.kind in ends],
