@@ -8,6 +8,7 @@ results.csv (it goes to errors.csv and runs again on resume).
 
 from __future__ import annotations
 
+import gc
 import os
 import time
 import traceback
@@ -50,6 +51,12 @@ def run_job(job: Job) -> dict[str, Any]:
         row.update(status="crashed", error=f"{type(exc).__name__}: {exc}", traceback=" | ".join(tb[-6:]),
                    wall_seconds=round(time.perf_counter() - t0, 3))
         return row
+    finally:
+        # An episode's parts reference each other (the robot's primitives and their phases, the person's
+        # behaviours), so a finished episode waits for the cycle collector, holding its MuJoCo model, data and
+        # images; freed now, before the next episode is built, a long-lived worker's memory stays level
+        # (benchmarks/soak.py) instead of creeping up through fragmentation.
+        gc.collect()
     decisions = s["decisions"]
     row.update(
         status="ok",
