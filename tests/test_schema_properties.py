@@ -23,11 +23,11 @@ from assistbot.episode.builder import override_paths, split_overrides
 from assistbot.episode.runner import Episode
 from assistbot.errors import UserError
 from assistbot.human.profiles import PROFILES
-from assistbot.sweep.spec import check_value, parse_param_arg
+from assistbot.sweep.spec import canon, check_value, parse_param_arg
 from assistbot.world import layout
 
 CORPUS = Path(__file__).parent / "corpus"
-SETTINGS = settings(max_examples=40, deadline=None, derandomize=True,
+SETTINGS = settings(max_examples=100, deadline=None, derandomize=True,
                     suppress_health_check=[HealthCheck.function_scoped_fixture, HealthCheck.too_slow])
 
 
@@ -220,16 +220,16 @@ PATHS = (st.sampled_from([p for p in override_paths() if p.startswith("cognition
          | st.sampled_from([p for p in override_paths() if not p.startswith("cognition.")]))
 
 
-@SETTINGS
+@settings(SETTINGS, max_examples=50)    # a value taken builds a whole episode
 @given(path=PATHS, value=VALUE_TEXT)
 def test_a_set_value_is_taken_or_refused_in_one_line(path, value):
     with _fresh() as tmp:
         status, err, out = _run_with_set(tmp, f"{path}={value}")
         if status is not None:
-            _expect_one_line(status, err, "", out)
+            _expect_one_line(status, err, f"--set: {path}: ", out)
             return
     # taken: then a sweep takes it too (one check per part, whichever way the value came)
-    check_value(path, yaml.safe_load(value), "sweep")
+    check_value(path, canon(yaml.safe_load(value)), "sweep")
 
 
 @SETTINGS

@@ -25,6 +25,8 @@ from assistbot import task
 from assistbot.errors import UserError
 
 WHERE = "cognition config"
+#: positions per item: beyond this a layer's size (items x spacing) costs memory and time for no finer behaviour
+MAX_SPACING = 200
 
 #: layer -> items, in the order they lie along the field
 LAYERS: dict[str, tuple[str, ...]] = {
@@ -224,8 +226,8 @@ class CognitionConfig:
         if isinstance(value, bool) or not isinstance(value, (int, float)):
             raise UserError(WHERE, path, f"must be a number, got {value!r}")
         if isinstance(old, int) and not isinstance(old, bool) and leaf == "spacing":
-            if int(value) != value or value < 2:
-                raise UserError(WHERE, path, f"must be a whole number >= 2, got {value!r}")
+            if not (2 <= value <= MAX_SPACING) or int(value) != value:
+                raise UserError(WHERE, path, f"must be a whole number from 2 to {MAX_SPACING}, got {value!r}")
             value = int(value)
         node[leaf] = value
 

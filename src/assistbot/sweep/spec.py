@@ -80,9 +80,8 @@ def canon(value: Any) -> Any:
         return value
     if isinstance(value, (int, float)):
         v = float(value)
-        if not math.isfinite(v):
-            return v
-        return float(f"{v:.10g}")
+        rounded = float(f"{v:.10g}")
+        return rounded if math.isfinite(rounded) else v    # the largest floats round up to infinity
     if isinstance(value, str):
         s = value.strip()
         try:
