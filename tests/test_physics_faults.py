@@ -32,6 +32,7 @@ def _inject(monkeypatch, what: str) -> None:
 
 @pytest.mark.parametrize("what, cause", [("nan", "MuJoCo: bad velocity"), ("explosion", "glass moves at")])
 def test_a_blown_up_physics_ends_the_episode_as_diverged_with_the_last_good_state(tmp_path, monkeypatch, what, cause):
+    monkeypatch.chdir(tmp_path)     # MuJoCo writes its warnings to MUJOCO_LOG.TXT where it runs
     scenario = tmp_path / "tiny.yaml"
     scenario.write_text(TINY.replace("time_limit: 3", "time_limit: 30"))
     _inject(monkeypatch, what)
