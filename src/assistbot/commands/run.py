@@ -77,5 +77,6 @@ def run(args: argparse.Namespace) -> int:
     print(f"{scenario.name}: {verdict}; decisions: {', '.join(a for _, a in result.decisions) or '(none)'}")
     if not args.no_video:
         print(f"video: {out / 'video.mp4'}")
+    print(f"inspector: {out / 'inspect.html'}")
     print(f"outputs: {out}/")
     return 0 if result.success else 1

@@ -20,16 +20,19 @@ def run_scenario(spec: str | Path | Scenario, out: str | Path | None = None, per
     (replacing an earlier run's; `assistbot.episode.outputs` says in which order, and how a killed run shows)."""
     from assistbot.episode.builder import build_episode
     from assistbot.episode.outputs import (
+        FIELDS,
         FRAME_EVERY,
         VideoRecorder,
         add_audio,
         claim,
         finish,
+        write_fields,
         write_figures,
         write_log,
         write_srt_for,
         write_summary,
     )
+    from assistbot.inspector import write_inspector
     from assistbot.interfaces import FieldAgent
 
     scenario = spec if isinstance(spec, Scenario) else load_scenario(spec)
@@ -71,6 +74,8 @@ def run_scenario(spec: str | Path | Scenario, out: str | Path | None = None, per
         if rec_video is not None and rec_video.writer.frames:
             audio = add_audio(ep, out_dir / "video.mp4", rec_video.writer.frames / rec_video.writer.fps)
         figures = [str(p) for p in write_figures(ep, recorder, out_dir)]
+        write_fields(ep, recorder, out_dir / FIELDS)
         write_summary(result, out_dir / "summary.json", {"figures": figures, "video_has_audio": audio})
+        write_inspector(out_dir)
         finish(out_dir)
     return result

@@ -33,7 +33,9 @@ PANEL_NAMES = {"CSGL_past": "CSGL past", "CSGL_present": "CSGL present", "CSGL_f
 PARTIAL = "PARTIAL"
 SUMMARY = "summary.json"
 #: every file a run writes (with the temporaries of the audio track), so that a new run leaves none of an earlier one
-RUN_FILES = ("video.mp4", "video.wav", "video.muxed.mp4", "log.jsonl", "subtitles.srt", *FIGURES, SUMMARY)
+FIELDS = "fields.npz"
+INSPECTOR = "inspect.html"
+RUN_FILES = ("video.mp4", "video.wav", "video.muxed.mp4", "log.jsonl", "subtitles.srt", *FIGURES, FIELDS, SUMMARY, INSPECTOR)
 
 
 def earlier_run(out: Path) -> str | None:
@@ -132,6 +134,27 @@ def write_figures(episode: Episode, recorder, out: Path) -> list[Path]:
         return []
     label = f"{episode.scenario.name}" + (" (ORACLE perception)" if episode.perception.name == "oracle" else "")
     return cognition_figures(label, recorder, episode.agent.decisions(), out)
+
+
+def write_fields(episode: Episode, recorder, path: Path) -> Path | None:
+    """The field recording for the inspector (`assistbot.inspector`): per layer, the activity u over the whole
+    field and u and the input S at each item's centre, float16 at the recorder's rate; none without fields."""
+    if recorder is None or not isinstance(episode.agent, FieldAgent):
+        return None
+    spec = episode.agent.net.spec
+    arrays: dict[str, np.ndarray] = {"t": recorder.times.astype(np.float32)}
+    u, s = recorder.u, recorder.s
+    for layer in recorder.fields:
+        idx = spec.fields[layer].item_indices
+        arrays[f"{layer}.u"] = u[layer].astype(np.float16)
+        arrays[f"{layer}.u_items"] = u[layer][:, idx].astype(np.float16)
+        arrays[f"{layer}.s_items"] = s[layer][:, idx].astype(np.float16)
+        arrays[f"{layer}.items"] = np.array(spec.fields[layer].items)
+        arrays[f"{layer}.item_idx"] = np.asarray(idx, np.int32)
+    tmp = path.with_name(path.name + ".tmp.npz")
+    np.savez_compressed(tmp, **arrays)
+    os.replace(tmp, path)
+    return path
 
 
 def add_audio(episode: Episode, video: Path, duration: float) -> bool:
