@@ -14,6 +14,7 @@ import os
 import time
 import warnings
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 
@@ -142,7 +143,7 @@ def write_fields(episode: Episode, recorder, path: Path) -> Path | None:
     if recorder is None or not isinstance(episode.agent, FieldAgent):
         return None
     spec = episode.agent.net.spec
-    arrays: dict[str, np.ndarray] = {"t": recorder.times.astype(np.float32)}
+    arrays: dict[str, Any] = {"t": recorder.times.astype(np.float32)}
     u, s = recorder.u, recorder.s
     for layer in recorder.fields:
         idx = spec.fields[layer].item_indices
