@@ -4,6 +4,7 @@ per field layer and the timeline, and seeking to a decision moves the video ther
 
 from __future__ import annotations
 
+import base64
 import html
 import json
 import os
@@ -43,8 +44,12 @@ def test_a_run_writes_its_inspector_page_with_the_fields_and_the_events(tmp_path
     assert [d["action"] for d in data["decisions"]] == [a for _, a in result.decisions]
     layers = data["fields"]["layers"]
     assert {"OL", "ASL", "IL", "AML", "AEL", "CSGL_present"} <= set(layers)
-    assert len(data["fields"]["t"]) >= 50 and all(len(layers["AEL"]["u_items"][k]) == len(data["fields"]["t"])
-                                                    for k in range(len(layers["AEL"]["items"])))
+    n, ael = len(data["fields"]["t"]), layers["AEL"]
+    assert n >= 50
+    # int16 base64 arrays: u over the kept positions, u and S per item, and the couplings' parts into AEL
+    assert len(base64.b64decode(ael["u"])) == 2 * n * len(ael["rows"])
+    assert len(base64.b64decode(ael["u_items"])) == 2 * n * len(ael["items"])
+    assert ael["inputs"] and all(len(base64.b64decode(v)) == 2 * n * len(ael["items"]) for v in ael["inputs"].values())
     assert len(data["ticks"]) >= 50 and data["video"] is None
 
 
@@ -81,5 +86,8 @@ def test_the_page_works_offline_in_a_browser_and_seeking_to_a_decision_moves_the
     assert report["errors"] == []
     assert report["heats"] == report["layers"] >= 9, report
     assert report["timeline"]
+    # the decided pool, plotted with u, S and the part of S from each coupling into AEL that gave any
+    assert report["pool"] == f"AEL:{result.decisions[0][1]}", report
+    assert report["pool_traces"][:2] == ["activity u", "input S"] and any(n.startswith("from ") for n in report["pool_traces"])
     assert report["video"] and abs(report["video_time"] - result.decisions[0][0]) < 0.25, report
     assert all(r.startswith("file:") for r in report["resources"]), report["resources"]

@@ -119,7 +119,7 @@ class FieldAgent(Agent, Protocol):
 
     net: Any
 
-    def record(self, layers: Any = None, every: int = 4) -> Any: ...
+    def record(self, layers: Any = None, every: int = 4, couplings: Any = ()) -> Any: ...
 
 
 class Actor(Protocol):

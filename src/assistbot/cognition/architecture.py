@@ -373,5 +373,5 @@ class Cognition:
         return target
 
     # -- recording ----------------------------------------------------------------------
-    def record(self, layers: Iterable[str] | None = None, every: int = 4):
-        return self.net.record(list(layers) if layers is not None else list(LAYERS), every=every)
+    def record(self, layers: Iterable[str] | None = None, every: int = 4, couplings: Iterable[str] = ()):
+        return self.net.record(list(layers) if layers is not None else list(LAYERS), every=every, couplings=couplings)

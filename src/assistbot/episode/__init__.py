@@ -18,6 +18,7 @@ def run_scenario(spec: str | Path | Scenario, out: str | Path | None = None, per
                  progress: bool = False):
     """Run one episode; with ``out``, write log.jsonl, summary.json, subtitles.srt, figures and video.mp4 there
     (replacing an earlier run's; `assistbot.episode.outputs` says in which order, and how a killed run shows)."""
+    from assistbot.cognition.architecture import SPOKEN_LAYERS
     from assistbot.episode.builder import build_episode
     from assistbot.episode.outputs import (
         FIELDS,
@@ -45,7 +46,9 @@ def run_scenario(spec: str | Path | Scenario, out: str | Path | None = None, per
         if video:
             rec_video = VideoRecorder(ep, out_dir / "video.mp4")
             ep.on_frame = rec_video
-    recorder = ep.agent.record(every=20) if out_dir is not None and isinstance(ep.agent, FieldAgent) else None
+    # 10 Hz, with each coupling's part of the input for the layers that speak (the inspector plots them)
+    recorder = (ep.agent.record(every=20, couplings=SPOKEN_LAYERS)
+                if out_dir is not None and isinstance(ep.agent, FieldAgent) else None)
     bar = None
     if progress:
         from tqdm import tqdm

@@ -2,9 +2,10 @@
 
 A run folder is complete or says it is not. `claim` writes the marker PARTIAL first, then removes an
 earlier run's files; the video is written frame by frame during the run (and gets its audio track at
-the end); log, subtitles and figures follow when the episode ends; summary.json is written last, each
-file to a temporary name and renamed into place; then the marker goes. A run killed at any moment
-leaves the earlier run's complete files (killed before `claim`) or a folder with PARTIAL in it.
+the end); log, subtitles, figures and the field recording follow when the episode ends, then
+summary.json, then the inspector page built from them, each file to a temporary name and renamed into
+place; then the marker goes. A run killed at any moment leaves the earlier run's complete files
+(killed before `claim`) or a folder with PARTIAL in it.
 """
 
 from __future__ import annotations
@@ -139,12 +140,16 @@ def write_figures(episode: Episode, recorder, out: Path) -> list[Path]:
 
 def write_fields(episode: Episode, recorder, path: Path) -> Path | None:
     """The field recording for the inspector (`assistbot.inspector`): per layer, the activity u over the whole
-    field and u and the input S at each item's centre, float16 at the recorder's rate; none without fields."""
+    field and u and the input S at each item's centre, and for the layers recorded with them each incoming
+    coupling's part of S there ("ASL.in.OL->ASL"); float16 at the recorder's rate; none without fields."""
     if recorder is None or not isinstance(episode.agent, FieldAgent):
         return None
     spec = episode.agent.net.spec
     arrays: dict[str, Any] = {"t": recorder.times.astype(np.float32)}
-    u, s = recorder.u, recorder.s
+    u, s, parts = recorder.u, recorder.s, recorder.coupling_items
+    for layer, by_coupling in parts.items():
+        for name, part in by_coupling.items():
+            arrays[f"{layer}.in.{name}"] = part.astype(np.float16)
     for layer in recorder.fields:
         idx = spec.fields[layer].item_indices
         arrays[f"{layer}.u"] = u[layer].astype(np.float16)

@@ -73,6 +73,7 @@ class Network:
         self._S = np.zeros(c.size)
         self._S_ext = np.zeros(c.size)
         self._stim_item = np.zeros(c.n_items)
+        self._tables: dict[str, np.ndarray] = {}   # a_mj per coupling, for coupling_inputs
         if fresh:
             self.t = 0.0
             self.steps = 0
@@ -199,6 +200,28 @@ class Network:
         """Total input S(x) (stimuli + couplings) of the last step."""
         return self._S[self._slice(field)]
 
+    def coupling_inputs(self, field: str) -> dict[str, np.ndarray]:
+        """The part of ``field``'s input S(x) that each incoming coupling gives, by coupling name, from the
+        outputs now (eq. 4: k times the table times the source items' outputs, spread like S); what S holds
+        beyond their sum is the stimuli."""
+        c, out = self._c, {}
+        f_items = 1.0 / (1.0 + np.exp(-np.clip(c.beta[c.item_pos] * (self.state_u[c.item_pos] - c.u0[c.item_pos]), -500, 500)))
+        sl = self._slice(field)
+        for cp in self.spec.couplings:
+            if cp.target != field:
+                continue
+            src, tgt = self.spec.fields[cp.source], self.spec.fields[cp.target]
+            s0, t0 = c.item_off[cp.source], c.item_off[cp.target]
+            d = np.zeros(c.n_items)
+            d[t0:t0 + len(tgt.items)] = cp.k * (self._table(cp) @ f_items[s0:s0 + len(src.items)])
+            out[cp.name] = (c.render @ d)[sl]
+        return out
+
+    def _table(self, coupling) -> np.ndarray:
+        if coupling.name not in self._tables:
+            self._tables[coupling.name] = coupling.matrix(self.spec.fields)
+        return self._tables[coupling.name]
+
     def output(self, field: str) -> np.ndarray:
         f = self.spec.field(field)
         return 1.0 / (1.0 + np.exp(-np.clip(f.beta * (self.u(field) - f.u0), -500, 500)))
@@ -241,11 +264,13 @@ class Network:
         return (idx * f.dx).tolist()
 
     # -- recording ----------------------------------------------------------------------
-    def record(self, fields: Iterable[str] | None = None, every: int = 1) -> Recorder:
+    def record(self, fields: Iterable[str] | None = None, every: int = 1, couplings: Iterable[str] = ()) -> Recorder:
+        """Keep u and S of ``fields`` (default all) every ``every`` steps, and for the fields in ``couplings`` the
+        part of S each incoming coupling gives at the items."""
         names = list(fields) if fields is not None else self.field_names
         for n in names:
             self.spec.field(n)
-        rec = Recorder(self, names, every)
+        rec = Recorder(self, names, every, couplings=couplings)
         self._recorders.append(rec)
         rec.maybe_record(force=True)
         return rec

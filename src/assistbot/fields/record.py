@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Iterable
 
 import numpy as np
 
@@ -13,7 +13,9 @@ if TYPE_CHECKING:
 class Recorder:
     """Keeps u and S of some fields every ``every`` steps; arrays are built on access."""
 
-    def __init__(self, net: "Network", fields: list[str], every: int = 1) -> None:
+    def __init__(self, net: "Network", fields: list[str], every: int = 1, couplings: Iterable[str] = ()) -> None:
+        """``couplings``: fields of which also to keep, at each item centre, the part of S that each incoming
+        coupling gives."""
         if int(every) < 1:
             from assistbot.fields.errors import FieldError
 
@@ -24,6 +26,8 @@ class Recorder:
         self._t: list[float] = []
         self._u: dict[str, list[np.ndarray]] = {f: [] for f in self.fields}
         self._s: dict[str, list[np.ndarray]] = {f: [] for f in self.fields}
+        self.couplings = [f for f in couplings if f in self.fields]
+        self._c: dict[str, dict[str, list[np.ndarray]]] = {f: {} for f in self.couplings}
 
     def maybe_record(self, force: bool = False) -> None:
         if not force and self.net.steps % self.every:
@@ -32,6 +36,10 @@ class Recorder:
         for f in self.fields:
             self._u[f].append(self.net.u(f).copy())
             self._s[f].append(self.net.input(f).copy())
+        for f in self.couplings:
+            at = self.net.spec.fields[f].item_indices
+            for name, part in self.net.coupling_inputs(f).items():
+                self._c[f].setdefault(name, []).append(part[at])
 
     @property
     def times(self) -> np.ndarray:
@@ -46,6 +54,12 @@ class Recorder:
     def s(self) -> dict[str, np.ndarray]:
         """Total input per field, shape (samples, positions)."""
         return {f: np.asarray(v) for f, v in self._s.items()}
+
+    @property
+    def coupling_items(self) -> dict[str, dict[str, np.ndarray]]:
+        """Per field, per incoming coupling: its part of S at each item centre, shape (samples, items); empty
+        for the fields not named in ``couplings``."""
+        return {f: {name: np.asarray(v) for name, v in parts.items()} for f, parts in self._c.items()}
 
     def item_traces(self, field: str, which: str = "u") -> dict[str, np.ndarray]:
         """Time course at each item's centre: {item: (samples,)}."""

@@ -24,6 +24,8 @@ from assistbot.errors import UserError
 PAGE = "inspect.html"
 #: activity is sent to the page as int16 in units of 1/QUANTUM (0.01 of activity): well below what a heat map shows
 QUANTUM = 100.0
+#: field positions per item the heat maps keep (a peak spans several; the page's rows are a few pixels each)
+ROWS_PER_ITEM = 5
 
 
 def write_inspector(run_dir: str | Path) -> Path:
@@ -94,8 +96,8 @@ def _log(path: Path) -> dict[str, Any]:
 
 
 def _fields(path: Path) -> dict[str, Any] | None:
-    """Per layer: times, item labels and centres, activity over the field (int16, base64, samples x positions) and
-    u and S at the item centres (rounded lists)."""
+    """Per layer: times, item labels and centres, the activity over the field (samples x kept positions), u and S
+    at the item centres and each coupling's part of S there (items x samples); every array as `_int16`."""
     if not path.exists():
         return None
     with np.load(path) as z:
@@ -104,13 +106,23 @@ def _fields(path: Path) -> dict[str, Any] | None:
         out: dict[str, Any] = {"t": [round(float(v), 3) for v in t], "quantum": QUANTUM, "layers": {}}
         for layer in layers:
             u = z[f"{layer}.u"].astype(np.float32)
-            q = np.clip(np.round(u * QUANTUM), -32767, 32767).astype("<i2")
+            items, idx = [str(i) for i in z[f"{layer}.items"]], [int(i) for i in z[f"{layer}.item_idx"]]
+            keep = np.arange(0, u.shape[1], max(1, u.shape[1] // max(1, ROWS_PER_ITEM * len(items))))
             out["layers"][layer] = {
-                "items": [str(i) for i in z[f"{layer}.items"]],
-                "item_idx": [int(i) for i in z[f"{layer}.item_idx"]],
-                "positions": int(u.shape[1]),
-                "u": base64.b64encode(q.tobytes()).decode("ascii"),
-                "u_items": np.round(z[f"{layer}.u_items"].astype(np.float32), 2).T.tolist(),
-                "s_items": np.round(z[f"{layer}.s_items"].astype(np.float32), 2).T.tolist(),
+                "items": items,
+                "item_idx": idx,
+                "rows": keep.tolist(),      # the field positions the heat map shows
+                "u": _int16(u[:, keep]),
+                "u_items": _int16(z[f"{layer}.u_items"].T),
+                "s_items": _int16(z[f"{layer}.s_items"].T),
+                # each incoming coupling's part of S at the items, where recorded and not all zero
+                "inputs": {k.split(".in.", 1)[1]: _int16(z[k].T) for k in z.files if k.startswith(f"{layer}.in.") and np.any(z[k])},
             }
     return out
+
+
+def _int16(a: np.ndarray) -> str:
+    """An array as little-endian int16 in units of 1/QUANTUM, row-major, base64 (the page decodes it)."""
+    q = np.clip(np.round(np.asarray(a, np.float32) * QUANTUM), -32767, 32767).astype("<i2")
+    return base64.b64encode(np.ascontiguousarray(q).tobytes()).decode("ascii")
+
