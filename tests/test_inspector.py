@@ -91,3 +91,19 @@ def test_the_page_works_offline_in_a_browser_and_seeking_to_a_decision_moves_the
     assert report["pool_traces"][:2] == ["activity u", "input S"] and any(n.startswith("from ") for n in report["pool_traces"])
     assert report["video"] and abs(report["video_time"] - result.decisions[0][0]) < 0.25, report
     assert all(r.startswith("file:") for r in report["resources"]), report["resources"]
+
+
+def test_the_recorded_truth_stands_beside_vision_in_the_log_and_the_page_and_changes_nothing(tmp_path):
+    scenario = tmp_path / "tiny.yaml"
+    scenario.write_text(TINY.replace("time_limit: 3", "time_limit: 5"))
+    plain = run_scenario(scenario, out=tmp_path / "plain", perception="vision", video=False)
+    kept = run_scenario(scenario, out=tmp_path / "truth", perception="vision", video=False, record_truth=True)
+    # the truth goes to the log only: the robot decided and did the same
+    assert kept.decisions == plain.decisions and kept.actions == plain.actions
+    ticks = [json.loads(line) for line in (tmp_path / "truth" / "log.jsonl").read_text().splitlines()
+             if '"kind": "tick"' in line]
+    assert ticks and all("truth" in r for r in ticks)
+    assert ticks[-1]["truth"]["objects"]["glass"] == {"zone": "HWS", "state": "empty"}
+    page_ticks = _page_data(tmp_path / "truth" / "inspect.html")["ticks"]
+    assert page_ticks[-1][5][0]["glass"] == ["HWS", "empty"]
+    assert all(t[5] is None for t in _page_data(tmp_path / "plain" / "inspect.html")["ticks"])

@@ -22,6 +22,9 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
                    help="the robot's mind instead of the scenario's: dnf (the field architecture), fsm (the "
                         "state-machine baseline) or package.module:factory")
     p.add_argument("--no-video", action="store_true", help="skip the video (faster)")
+    p.add_argument("--record-truth", action="store_true",
+                   help="also log the ground truth beside what vision reported (the inspector shows vision's mistakes; "
+                        "the robot never sees it)")
     p.add_argument("--force", action="store_true",
                    help="replace an earlier run in the output folder (without it, such a folder is refused)")
 
@@ -72,7 +75,7 @@ def run(args: argparse.Namespace) -> int:
         state = "an unfinished run (PARTIAL)" if earlier == PARTIAL else "an earlier run (summary.json)"
         raise UserError(str(out), "--out", f"holds {state}; pass --force to replace it, or name another folder with --out")
     result = run_scenario(scenario, out=out, perception=args.perception, seed=args.seed, overrides=overrides,
-                          video=not args.no_video, progress=True)
+                          video=not args.no_video, progress=True, record_truth=args.record_truth)
     verdict = f"drank at t = {result.time_to_drink:.1f} s" if result.success else f"did not drink ({result.end_reason})"
     print(f"{scenario.name}: {verdict}; decisions: {', '.join(a for _, a in result.decisions) or '(none)'}")
     if not args.no_video:

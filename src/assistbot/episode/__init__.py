@@ -15,7 +15,7 @@ from assistbot.scenario import Scenario, load_scenario
 
 def run_scenario(spec: str | Path | Scenario, out: str | Path | None = None, perception: str = "vision",
                  seed: int | None = None, overrides: dict[str, Any] | None = None, video: bool = True,
-                 progress: bool = False):
+                 progress: bool = False, record_truth: bool = False):
     """Run one episode; with ``out``, write log.jsonl, summary.json, subtitles.srt, figures and video.mp4 there
     (replacing an earlier run's; `assistbot.episode.outputs` says in which order, and how a killed run shows)."""
     from assistbot.cognition.architecture import SPOKEN_LAYERS
@@ -38,7 +38,7 @@ def run_scenario(spec: str | Path | Scenario, out: str | Path | None = None, per
 
     scenario = spec if isinstance(spec, Scenario) else load_scenario(spec)
     ep = build_episode(scenario, perception=perception, seed=seed, overrides=overrides,
-                       frame_every=FRAME_EVERY if (video and out is not None) else None)
+                       frame_every=FRAME_EVERY if (video and out is not None) else None, record_truth=record_truth)
     out_dir = Path(out) if out is not None else None
     rec_video = None
     if out_dir is not None:

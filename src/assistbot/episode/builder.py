@@ -69,9 +69,11 @@ def split_overrides(overrides: dict[str, Any], where: str, agent: str = "dnf") -
 
 
 def build_episode(scenario: Scenario, perception: str = "vision", seed: int | None = None,
-                  overrides: dict[str, Any] | None = None, frame_every: float | None = None) -> Episode:
+                  overrides: dict[str, Any] | None = None, frame_every: float | None = None,
+                  record_truth: bool = False) -> Episode:
     """The episode of ``scenario``: ``perception`` "vision" (the robot's cameras) or "oracle" (labelled
-    ground truth); ``seed`` and ``overrides`` (dotted paths) on top of the scenario's own."""
+    ground truth); ``seed`` and ``overrides`` (dotted paths) on top of the scenario's own. ``record_truth``:
+    the log also keeps the oracle's percept beside vision's, for the experimenter (the agent never sees it)."""
     from assistbot.episode.executor import RobotExecutor
     from assistbot.human.controller import HumanController
     from assistbot.human.script import HumanConfig
@@ -103,5 +105,10 @@ def build_episode(scenario: Scenario, perception: str = "vision", seed: int | No
     perturbation = Perturbation(**parts.perturb)
     if perturbation.active:
         seeing = PerturbedPerception(seeing, perturbation, seed)
+    truth = None
+    if record_truth and perception != "oracle":
+        from assistbot.episode.oracle import OraclePerception
+
+        truth = OraclePerception(world, partner.appearance)
     return Episode(scenario, seed, world, seeing, agent, actor, partner, DrinkingTask(world, scenario.time_limit),
-                   overrides=overrides, frame_every=frame_every)
+                   overrides=overrides, frame_every=frame_every, truth=truth)

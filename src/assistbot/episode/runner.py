@@ -89,10 +89,11 @@ class Episode:
 
     def __init__(self, scenario, seed: int, world, perception: Perception, agent: Agent, actor: Actor,
                  partner: Partner, task: Task, overrides: dict[str, Any] | None = None,
-                 frame_every: float | None = None) -> None:
+                 frame_every: float | None = None, truth: Perception | None = None) -> None:
         self.scenario, self.seed, self.overrides = scenario, seed, dict(overrides or {})
         self.world, self.perception, self.agent, self.actor, self.partner, self.task = (
             world, perception, agent, actor, partner, task)
+        self.truth = truth       # ground truth for the log only (--record-truth): never reaches the agent
         self.speech = SpeechLog()
         self.log: list[dict] = []
         self.frame_every = frame_every
@@ -196,6 +197,11 @@ class Episode:
                     "pos": [round(float(v), 3) for v in o.position]} for k, o in percept.objects.items()}
         h = percept.hand
         body = self.actor.proprioception()
+        truth = {}
+        if self.truth is not None:
+            tp = self.truth.perceive(t, body)
+            truth = {"truth": {"objects": {k: {"zone": o.zone, "state": o.state} for k, o in tp.objects.items()},
+                               "hand": {"posture": tp.hand.posture, "object": tp.hand.object_in_hand, "held_out": tp.hand.held_out}}}
         self.log.append({
             "t": round(t, 3), "kind": "tick",
             "percept": {"objects": objs, "hand": {"posture": h.posture, "seen": h.seen, "object": h.object_in_hand,
@@ -204,6 +210,7 @@ class Episode:
             **self.agent.trace(),
             "decision": decision.action, "robot_status": body.status,
             "human": self.partner.appearance().behaviour,
+            **truth,
         })
 
     def _result(self, t_end: float) -> EpisodeResult:

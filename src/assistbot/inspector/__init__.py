@@ -89,9 +89,13 @@ def _log(path: Path) -> dict[str, Any]:
                               "detail": {k: v for k, v in row.items() if k not in ("t", "kind", "event", "last_good")}})
             elif kind == "tick":
                 p = row["percept"]
+                truth = row.get("truth")
                 ticks.append([t, {o: [v["zone"], v["state"], v["seen"], v["conf"]] for o, v in p["objects"].items()},
                               [p["hand"]["posture"], p["hand"]["object"], p["hand"]["held_out"]], row.get("decision"),
-                              row.get("human")])
+                              row.get("human"),
+                              None if truth is None else
+                              [{o: [v["zone"], v["state"]] for o, v in truth["objects"].items()},
+                               [truth["hand"]["posture"], truth["hand"]["object"], truth["hand"]["held_out"]]]])
     return {"decisions": decisions, "said": said, "person": person, "world": world, "ticks": ticks}
 
 
