@@ -95,6 +95,22 @@ def test_report_renders_tables_and_plots(sweep8):
     assert all(0 <= float(r["rate_low"]) <= float(r["success_rate"]) <= float(r["rate_high"]) <= 1 for r in rows)
 
 
+def test_the_report_page_lists_every_episode_and_links_the_kept_runs(scenario, tmp_path):
+    out = tmp_path / "kept"
+    args = [sys.executable, "-m", "assistbot.cli", "sweep", str(scenario), "--param", "cognition.k=0.8,1.2",
+            "--perception", "oracle", "--workers", "1", "--no-progress", "--out", str(out), "--keep-runs"]
+    assert subprocess.run(args, capture_output=True, text=True, timeout=600).returncode == 0
+    assert subprocess.run([sys.executable, "-m", "assistbot.cli", "report", str(out)], capture_output=True,
+                          timeout=120).returncode == 0
+    _, rows = read_rows(out / "results.csv")
+    page = (out / "report" / "report.html").read_text()
+    assert "<h2>cognition.k</h2>" in page and "Each episode links to its inspector page." in page
+    for r in rows:
+        run = out / "runs" / r["job_id"]
+        assert (run / "summary.json").exists() and (run / "inspect.html").exists() and not (run / "video.mp4").exists()
+        assert f'href="../runs/{r["job_id"]}/inspect.html"' in page
+
+
 def _start(args: list[str]) -> subprocess.Popen:
     return subprocess.Popen(args, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, start_new_session=True)
 

@@ -105,6 +105,9 @@ def test_report_on_fake_results(spec, tmp_path):
     assert "6/12 drank" in md  # k = 1.2 drinks
     assert "| 1.2 | 6 | 6 | 1.00 |" in md and "| 0.8 | 6 | 0 | 0.00 |" in md
     assert "time to drink 10.0 s [" in md  # seeds 0, 1, 2 -> 0, 10, 20 s
+    page = paths[1].read_text()
+    assert paths[1].name == "report.html" and "<table>" in page and "<h2>Episodes</h2>" in page
+    assert page.count("<tr class=") == 12 and "--keep-runs" in page     # no run folders kept: no links
 
 
 def test_report_counts_the_expected_decision_sequence(spec, tmp_path):

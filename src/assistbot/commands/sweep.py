@@ -44,6 +44,9 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument("--address", default=None, metavar="ADDR",
                    help="Ray cluster to join: auto, HOST:PORT or ray://HOST:10001 (default: start a local Ray)")
     p.add_argument("--cpus", type=int, default=None, metavar="N", help="CPUs of a local Ray (default: --workers or all)")
+    p.add_argument("--keep-runs", action="store_true",
+                   help="keep each episode's run folder (log, summary, figures, inspect.html; no video) in OUT/runs/, "
+                        "linked from the report's report.html")
     p.add_argument("--dry-run", action="store_true", help="list the episodes (and which are done) without running them")
     p.add_argument("--no-progress", action="store_true", help="no progress bar")
     p.add_argument("--list-paths", action="store_true", help="print every parameter path a sweep can vary and exit")
@@ -97,7 +100,7 @@ def run(args: argparse.Namespace) -> int:
 
     executor = make_executor(args.executor, workers=args.workers, address=args.address, cpus=args.cpus)
     try:
-        outcome = run_sweep(spec, out, executor=executor, progress=not args.no_progress)
+        outcome = run_sweep(spec, out, executor=executor, progress=not args.no_progress, keep_runs=args.keep_runs)
     except KeyboardInterrupt as exc:
         o = getattr(exc, "outcome", None)
         done = f" ({o.skipped + o.ran} of {o.total} episodes saved)" if o is not None else ""

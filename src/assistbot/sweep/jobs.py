@@ -33,6 +33,7 @@ class Job:
     scenario_path: str | None = None
     scenario_sha: str = ""
     overrides: dict[str, Any] = field(default_factory=dict)  # non-object params, as episode overrides
+    run_dir: str | None = None  # with --keep-runs: the episode's own run folder (as `assistbot run` writes one)
 
 
 def job_id(scenario: str, params: dict[str, Any], seed: int, perception: str, time_limit: float) -> str:

@@ -3,6 +3,8 @@
 Writes into DIR/report/ (or ``out``):
 
     report.md                    the summary: overall, one table per parameter, heatmaps, decision sequences
+    report.html                  the same as a page, with every episode's row (linked to its inspector page
+                                 when the sweep kept its run folder: `assistbot sweep --keep-runs`)
     summary.csv                  every table row of report.md (factor, value, n, rate with its Wilson CI, ...)
     success_vs_<path>.png        success rate (Wilson 95% CI) and time to drink (t 95% CI) per value
     heatmap_<path1>__<path2>.png success rate over two parameters, each cell annotated with its n
@@ -389,6 +391,8 @@ def write_report(results_dir: str | Path, out: str | Path | None = None, expect:
     md += [""] + _failure_section(rows)
     report = out_dir / "report.md"
     report.write_text("\n".join(md), encoding="utf-8")
+    page = out_dir / "report.html"
+    page.write_text(_html_report(md, rows, params, results_dir, out_dir), encoding="utf-8")
     summary_path = out_dir / "summary.csv"
     with open(summary_path, "w", encoding="utf-8", newline="") as fh:
         w = csv.writer(fh, lineterminator="\n")
@@ -397,4 +401,36 @@ def write_report(results_dir: str | Path, out: str | Path | None = None, expect:
                     "spilled_mean", "min_distance_human"])
         for r in summary:
             w.writerow(["" if isinstance(x, float) and math.isnan(x) else (round(x, 6) if isinstance(x, float) else x) for x in r])
-    return [report, summary_path] + written
+    return [report, page, summary_path] + written
+
+
+def _html_report(md: list[str], rows: list[dict], params: list[str], results_dir: Path, out_dir: Path) -> str:
+    """report.md as a page, followed by one row per episode, linked to its run folder's inspector page when the
+    sweep kept it (``runs/<job id>/inspect.html`` beside results.csv)."""
+    import html
+    import os
+
+    import markdown
+
+    from assistbot.sweep.runner import RUNS
+
+    base = results_dir.parent if results_dir.suffix == ".csv" else results_dir
+    cols = ["scenario", *params, "seed", "success", "end_reason", "time_to_drink", "decisions"]
+    head = "".join(f"<th>{html.escape(c)}</th>" for c in ["episode", *cols])
+    body = []
+    for r in sorted(rows, key=lambda r: (str(r.get("scenario")), str(r.get("job_id")))):
+        job = str(r.get("job_id", ""))
+        page = base / RUNS / job / "inspect.html"
+        link = (f'<a href="{html.escape(os.path.relpath(page, out_dir))}">{html.escape(job)}</a>' if page.exists()
+                else html.escape(job))
+        cells = "".join(f"<td>{html.escape(_fmt_value(r.get(c)))}</td>" for c in cols)
+        body.append(f"<tr class=\"{'ok' if r.get('success') is True else 'bad'}\"><td>{link}</td>{cells}</tr>")
+    kept = any((base / RUNS / str(r.get("job_id", "")) / "inspect.html").exists() for r in rows)
+    note = ("Each episode links to its inspector page." if kept else
+            "Run the sweep with --keep-runs to keep each episode's run folder and link its inspector page here.")
+    style = ("body{font:14px/1.45 system-ui,sans-serif;max-width:1200px;margin:1em auto;padding:0 1em}"
+             "table{border-collapse:collapse;font-size:12px;margin:.5em 0}td,th{padding:2px 7px;border-bottom:1px solid #ddd}"
+             "tr.bad td:nth-child(2){color:#a11}img{max-width:100%}")
+    return ("<!DOCTYPE html><html><head><meta charset='utf-8'><title>" + html.escape(md[0].lstrip("# ")) + "</title>"
+            f"<style>{style}</style></head><body>" + markdown.markdown("\n".join(md), extensions=["tables"])
+            + f"<h2>Episodes</h2><p>{note}</p><table><tr>{head}</tr>{''.join(body)}</table></body></html>\n")

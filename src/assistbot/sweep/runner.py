@@ -8,6 +8,7 @@
 
 from __future__ import annotations
 
+import dataclasses
 import signal
 import sys
 import time
@@ -67,9 +68,15 @@ class _Terminate(KeyboardInterrupt):
     """SIGTERM handled like Ctrl-C: stop the workers, rewrite the Parquet file, exit 130."""
 
 
+#: the folder of the kept episodes' run folders in a sweep's results folder (--keep-runs)
+RUNS = "runs"
+
+
 def run_sweep(spec: SweepSpec, out: str | Path, executor=None, progress: bool = True,
-              on_row: Callable[[dict], None] | None = None, log: Callable[[str], None] | None = None) -> SweepOutcome:
-    """Run the jobs of ``spec`` that ``out/results.csv`` does not hold yet.
+              on_row: Callable[[dict], None] | None = None, log: Callable[[str], None] | None = None,
+              keep_runs: bool = False) -> SweepOutcome:
+    """Run the jobs of ``spec`` that ``out/results.csv`` does not hold yet; with ``keep_runs`` each episode
+    also writes its run folder (log, summary, figures, inspector page; no video) to ``out/runs/<job id>``.
 
     ``executor`` is a `LocalExecutor` or `RayExecutor` (default: a local pool on every CPU).
     Raises KeyboardInterrupt after saving when interrupted (Ctrl-C or SIGTERM); the outcome of an
@@ -86,6 +93,8 @@ def run_sweep(spec: SweepSpec, out: str | Path, executor=None, progress: bool = 
     try:
         write_spec(spec, out, jobs)
         pending = [j for j in jobs if j.id not in done]
+        if keep_runs:
+            pending = [dataclasses.replace(j, run_dir=str(out / RUNS / j.id)) for j in pending]
         outcome = SweepOutcome(out=out, total=len(jobs), skipped=len(jobs) - len(pending))
         stale = sorted({j.scenario for j in jobs if j.id in done and done[j.id].get("scenario_sha") not in ("", j.scenario_sha)})
         if stale:

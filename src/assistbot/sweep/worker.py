@@ -34,7 +34,8 @@ def init_worker() -> None:
 
 
 def run_job(job: Job) -> dict[str, Any]:
-    """Run one episode without video and return its result row (see `assistbot.sweep.results.FIXED`)."""
+    """Run one episode without video and return its result row (see `assistbot.sweep.results.FIXED`); its run
+    folder goes to ``job.run_dir`` when the sweep keeps runs."""
     from assistbot.episode import run_scenario
     from assistbot.scenario import parse_scenario
 
@@ -43,7 +44,7 @@ def run_job(job: Job) -> dict[str, Any]:
                            "perception": job.perception, "time_limit": job.time_limit}
     try:
         scenario = parse_scenario(job.scenario_data, job.scenario_path)
-        result = run_scenario(scenario, out=None, perception=job.perception, seed=job.seed,
+        result = run_scenario(scenario, out=job.run_dir, perception=job.perception, seed=job.seed,
                               overrides=dict(job.overrides), video=False, progress=False)
         s = result.summary()
     except Exception as exc:  # noqa: BLE001 - a crashed episode must not end the sweep
