@@ -91,7 +91,8 @@ def _log(path: Path) -> dict[str, Any]:
                 p = row["percept"]
                 truth = row.get("truth")
                 ticks.append([t, {o: [v["zone"], v["state"], v["seen"], v["conf"]] for o, v in p["objects"].items()},
-                              [p["hand"]["posture"], p["hand"]["object"], p["hand"]["held_out"]], row.get("decision"),
+                              [p["hand"]["posture"], p["hand"]["object"], p["hand"]["held_out"], p["hand"]["seen"]],
+                              row.get("decision"),
                               row.get("human"),
                               None if truth is None else
                               [{o: [v["zone"], v["state"]] for o, v in truth["objects"].items()},
