@@ -19,16 +19,9 @@ import threading
 import time
 from pathlib import Path
 
-SCENARIO = """\
-name: soak
-seed: 0
-time_limit: {t}
-objects:
-  bottle: {{zone: RWS, state: closed}}
-  glass: {{zone: HWS, state: empty}}
-human:
-  profile: passive
-"""
+from _scenarios import FIG5_LIKE
+
+SCENARIO = FIG5_LIKE.replace("{name}", "soak")
 TARGET = 0.05
 
 

@@ -24,16 +24,9 @@ import tempfile
 import time
 from pathlib import Path
 
-SCENARIO = """\
-name: bench-fig5
-seed: 0
-time_limit: {t}
-objects:
-  bottle: {{zone: RWS, state: closed}}
-  glass: {{zone: HWS, state: empty}}
-human:
-  profile: passive
-"""
+from _scenarios import FIG5_LIKE
+
+SCENARIO = FIG5_LIKE.replace("{name}", "bench-fig5")
 
 
 def run_config(scenario: Path, out: Path, episodes: int, executor) -> dict:
