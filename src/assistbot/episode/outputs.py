@@ -157,8 +157,9 @@ def write_fields(episode: Episode, recorder, path: Path) -> Path | None:
         arrays[f"{layer}.s_items"] = s[layer][:, idx].astype(np.float16)
         arrays[f"{layer}.items"] = np.array(spec.fields[layer].items)
         arrays[f"{layer}.item_idx"] = np.asarray(idx, np.int32)
-    tmp = path.with_name(path.name + ".tmp.npz")
-    np.savez_compressed(tmp, **arrays)
+    tmp = path.with_name(path.name + ".tmp")
+    with open(tmp, "wb") as f:      # a file object: numpy adds no suffix
+        np.savez_compressed(f, **arrays)
     os.replace(tmp, path)
     return path
 

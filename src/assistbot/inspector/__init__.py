@@ -45,8 +45,9 @@ def write_inspector(run_dir: str | Path) -> Path:
         **_log(run / "log.jsonl"),
         "fields": _fields(run / "fields.npz"),
     }
-    page = _template().replace("/*PLOTLY*/", _plotly_js()).replace(
-        "/*DATA*/", json.dumps(data, separators=(",", ":")).replace("</", "<\\/"))
+    # the data first: the library's text is not searched for the data's marker; "</" in neither ends a script
+    page = (_template().replace("/*DATA*/", json.dumps(data, separators=(",", ":")).replace("</", "<\\/"))
+            .replace("/*PLOTLY*/", _plotly_js().replace("</script", "<\\/script")))
     out = run / PAGE
     tmp = out.with_name(out.name + ".tmp")
     tmp.write_text(page, encoding="utf-8")
