@@ -104,9 +104,12 @@ def test_a_run_killed_at_any_moment_leaves_the_earlier_run_or_says_it_is_partial
         else:                       # killed before it claimed the folder, or after it finished: a whole run
             assert _complete(out)
             outcomes.append("complete")
-    # an interrupt (Ctrl-C) is the same: exit 130, the folder marked partial
+    # an interrupt (Ctrl-C) once the run has claimed its folder is the same: exit 130, the folder marked partial
+    (out / PARTIAL).unlink(missing_ok=True)
     proc = subprocess.Popen(args, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
-    time.sleep(min(whole * 0.6, whole - 0.5))
+    t_end = time.monotonic() + whole
+    while not (out / PARTIAL).exists() and time.monotonic() < t_end:
+        time.sleep(0.02)
     proc.send_signal(signal.SIGINT)
     _, err = proc.communicate()
     assert proc.returncode == 130 and "Traceback" not in err, err
