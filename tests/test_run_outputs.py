@@ -38,6 +38,15 @@ def test_a_folder_with_an_earlier_run_is_refused_without_force(tmp_path, capsys)
     assert {p.name: p.read_bytes() for p in out.iterdir()} == before, "the earlier run was touched"
 
 
+def test_an_output_folder_that_is_a_file_is_one_line(tmp_path, capsys):
+    scenario, out = tmp_path / "tiny.yaml", tmp_path / "out"
+    scenario.write_text(TINY)
+    out.write_text("not a folder")
+    assert cli.main(["run", str(scenario), "--out", str(out), "--no-video"]) == 2
+    assert capsys.readouterr().err == f"error: {out}: --out: is a file; name a folder\n"
+    assert out.read_text() == "not a folder"
+
+
 def test_an_unfinished_run_is_named_as_such(tmp_path, capsys):
     scenario, out = tmp_path / "tiny.yaml", tmp_path / "out"
     scenario.write_text(TINY)

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import argparse
+import os
 from pathlib import Path
 
 NAME = "run"
@@ -70,6 +71,11 @@ def run(args: argparse.Namespace) -> int:
     overrides = parse_sets(args.sets)
     split_overrides(overrides, "--set", scenario.agent)   # a mistake names --set, not the scenario file
     out = args.out or Path("render") / scenario.name
+    if out.exists() and not out.is_dir():
+        raise UserError(str(out), "--out", "is a file; name a folder")
+    writable = next(p for p in (out, *out.parents) if p.exists())
+    if not os.access(writable, os.W_OK):
+        raise UserError(str(out), "--out", f"cannot write in {writable}")
     earlier = earlier_run(out)
     if earlier and not args.force:
         state = "an unfinished run (PARTIAL)" if earlier == PARTIAL else "an earlier run (summary.json)"
