@@ -130,7 +130,7 @@ def check_param(k: str, v: Any, where: str) -> Any:
         raise UserError(where, f"human.{k}", f"expected a number, got {v!r}")
     try:
         v = float(v)
-    except (TypeError, ValueError):
+    except ValueError:      # text that is no number
         raise UserError(where, f"human.{k}", f"expected a number, got {v!r}") from None
     if k == "wrong_grip" and not 0.0 <= v <= 1.0:
         raise UserError(where, "human.wrong_grip", f"a chance between 0 and 1, got {v:g}")
