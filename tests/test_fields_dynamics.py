@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 from scipy.integrate import solve_ivp
 
-from assistbot.fields import Field2D, Network
+from assistbot.fields import Network
 from assistbot.fields.demo import demo_spec
 
 BACKENDS = ["numpy", "numba"]
@@ -239,26 +239,6 @@ def test_table_prints_readably():
     assert lines[0] == "source_2->target (k=0.6)"
     row_b = [line for line in lines if line.strip().startswith("B |")][0]
     assert row_b.split("|")[1].split() == [".", ".", "3", "."]
-
-
-def test_field2d_holds_a_peak_through_a_gap_and_follows_a_moving_input():
-    f = Field2D("target", shape=(40, 80), origin=(-0.3, -0.2), dx=0.01, tau=0.05, h=-3.0, beta=4.0,
-                A=1500.0, sigma=0.03, w_inhib=50.0)
-    f.add_gaussian((0.1, 0.05), 10.0, 0.03)
-    f.step(0.005, 100)
-    x, y, _ = f.peak()
-    assert abs(x - 0.1) < 0.01 and abs(y - 0.05) < 0.01
-    f.clear_input()
-    f.step(0.005, 100)  # a 0.5 s gap in the input: the peak is held
-    x, y, _ = f.peak()
-    assert abs(x - 0.1) < 0.01 and abs(y - 0.05) < 0.01
-    for k in range(60):  # input moves by 0.1 m over 0.6 s
-        f.clear_input()
-        f.add_gaussian((0.1 + 0.1 * (k + 1) / 60, 0.05), 10.0, 0.03)
-        f.step(0.005, 2)
-    f.step(0.005, 80)  # the input rests at 0.2: the peak catches up
-    x, _, _ = f.peak()
-    assert abs(x - 0.2) < 0.01
 
 
 def test_compiled_sigmoid_matches_the_exact_one_over_the_whole_range():

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import pytest
 
-from assistbot.fields import Field2D, FieldError, Network
+from assistbot.fields import FieldError, Network
 
 
 def spec(**field_overrides):
@@ -107,11 +107,10 @@ def test_yaml_error_names_the_file(tmp_path):
     assert str(p) in err.value.where and err.value.key == "tau"
 
 
-def test_field2d_bad_parameters():
+def test_a_plane_with_bad_parameters_names_them():
     with pytest.raises(FieldError) as err:
-        Field2D("T", shape=(10, 10), tau=0.0)
+        Network.from_dict({"dt": 0.005, "fields": {"T": {"shape": [10, 10], "tau": 0.0}}})
     assert err.value.key == "tau"
-    f = Field2D("T", shape=(10, 10), tau=0.05)
     with pytest.raises(FieldError) as err:
-        f.step(0.05)
+        Network.from_dict({"dt": 0.05, "fields": {"T": {"shape": [10, 10], "tau": 0.05}}})
     assert "dt=0.05" in err.value.message

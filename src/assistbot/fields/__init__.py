@@ -10,20 +10,22 @@ Equations (the seed's section III.A):
 
 A `Network` is declared as data (`Network.from_dict` / `from_yaml`), stepped
 as one batch (numba when available, numpy otherwise), addressed by field,
-item and parameter path, and recorded for paper-style plots. `Field2D` is a
-field over a plane (the robot's target field). Nothing here knows robots.
+item and parameter path, and recorded for paper-style plots. Its fields are
+1-D or 2-D (``shape``); they couple through items (eq. 4) or continuously
+(a Gaussian kernel over a source's whole output, projected between 1-D and
+2-D by sum, max or expansion), as the DFT toolkits cedar and COSIVINA do.
+Nothing here knows robots.
 """
 
 from assistbot.fields.errors import FieldError
-from assistbot.fields.field2d import Field2D
 from assistbot.fields.network import Network, format_table
 from assistbot.fields.plot import plot_history
 from assistbot.fields.record import Recorder
-from assistbot.fields.spec import CouplingSpec, FieldSpec, KernelSpec, NetworkSpec
+from assistbot.fields.spec import ContinuousCouplingSpec, CouplingSpec, FieldSpec, KernelSpec, NetworkSpec
 
 __all__ = [
+    "ContinuousCouplingSpec",
     "CouplingSpec",
-    "Field2D",
     "FieldError",
     "FieldSpec",
     "KernelSpec",

@@ -10,6 +10,13 @@ from __future__ import annotations
 import numba
 import numpy as np
 
+from assistbot.fields.compiled import DIRECT, EXPAND_ALONG_Y, MAX_OVER_X, MAX_OVER_Y, SUM_OVER_X, SUM_OVER_Y
+
+# numpy's error model: a float division needs no zero check (numba's default raises ZeroDivisionError, and
+# the check keeps the loop from vectorising); no division here can meet zero. "contract" lets a * b + c be
+# one fused multiply-add, rounded once (so at least as exact); no other fast-math licence is given.
+jit = numba.njit(cache=True, nogil=True, error_model="numpy", fastmath={"contract"})
+
 # exp(z) = 2^k e^r with k = round(z / ln 2), |r| <= ln(2)/2: a degree-12 Taylor
 # polynomial of e^r is exact to double precision there (< 4e-16 relative, tested
 # against math.exp), and unlike libm's exp it vectorises; 2^k is built from the
@@ -22,7 +29,7 @@ MAGIC = 6755399441055744.0
 MAGIC_BITS = int(np.array([MAGIC]).view(np.int64)[0])
 
 
-@numba.njit(cache=True, nogil=True)
+@jit
 def sigmoid(u, beta, u0, f, tbuf):
     """f = 1 / (1 + exp(-beta (u - u0))), vectorised (see the note above)."""
     n = u.size
@@ -43,43 +50,189 @@ def sigmoid(u, beta, u0, f, tbuf):
     for i in range(n):
         f[i] = 1.0 / (1.0 + f[i] * tbuf[i])
 
-@numba.njit(cache=True, nogil=True)
+@jit
+def gather(q0, q1, offsets, grid, t_src, t_kind, t_w, f, bv, tny, tnx, proj):
+    """bv = sum over the terms q0..q1 of weight * P(f(source)), P by the term's kind (see compiled)."""
+    for i in range(bv.size):
+        bv[i] = 0.0
+    for q in range(q0, q1):
+        s = t_src[q]
+        so = offsets[s]
+        sv = f[so:offsets[s + 1]]
+        w = t_w[q]
+        kind = t_kind[q]
+        sny = grid[s, 0]
+        snx = grid[s, 1]
+        if kind == DIRECT:
+            for i in range(bv.size):
+                bv[i] += w * sv[i]
+        elif kind == SUM_OVER_Y or kind == MAX_OVER_Y:  # one value per column
+            pv = proj[:snx]
+            for ix in range(snx):
+                pv[ix] = sv[ix]
+            for iy in range(1, sny):
+                row = sv[iy * snx:(iy + 1) * snx]
+                if kind == SUM_OVER_Y:
+                    for ix in range(snx):
+                        pv[ix] += row[ix]
+                else:
+                    for ix in range(snx):
+                        pv[ix] = max(pv[ix], row[ix])
+            for ix in range(snx):
+                bv[ix] += w * pv[ix]
+        elif kind == SUM_OVER_X or kind == MAX_OVER_X:  # one value per row
+            for iy in range(sny):
+                row = sv[iy * snx:(iy + 1) * snx]
+                acc = row[0]
+                if kind == SUM_OVER_X:
+                    for ix in range(1, snx):
+                        acc += row[ix]
+                else:
+                    for ix in range(1, snx):
+                        acc = max(acc, row[ix])
+                bv[iy] += w * acc
+        else:  # EXPAND_ALONG_Y (the source runs along x), EXPAND_ALONG_X (the source runs along y)
+            for iy in range(tny):
+                row = bv[iy * tnx:(iy + 1) * tnx]
+                if kind == EXPAND_ALONG_Y:
+                    for ix in range(tnx):
+                        row[ix] += w * sv[ix]
+                else:
+                    v = w * sv[iy]
+                    for ix in range(tnx):
+                        row[ix] += v
+
+
+@jit
+def conv_line(dst, pv, taps, n):
+    """dst[i] += sum_t taps[t] pv[i + t] for i < n, taps symmetric (every kernel here is a Gaussian).
+
+    Each pass takes four pairs of mirrored taps, adding the two inputs of a pair before one multiply:
+    a quarter of the loads and stores of dst that one pass per tap costs, which is what bounds the loop.
+    """
+    T = taps.size
+    r = (T - 1) // 2
+    t = 0
+    while t + 4 <= r:
+        g0, g1, g2, g3 = taps[t], taps[t + 1], taps[t + 2], taps[t + 3]
+        a0, b0 = pv[t:t + n], pv[T - 1 - t:T - 1 - t + n]
+        a1, b1 = pv[t + 1:t + 1 + n], pv[T - 2 - t:T - 2 - t + n]
+        a2, b2 = pv[t + 2:t + 2 + n], pv[T - 3 - t:T - 3 - t + n]
+        a3, b3 = pv[t + 3:t + 3 + n], pv[T - 4 - t:T - 4 - t + n]
+        for i in range(n):
+            dst[i] += (g0 * (a0[i] + b0[i]) + g1 * (a1[i] + b1[i])) + (g2 * (a2[i] + b2[i]) + g3 * (a3[i] + b3[i]))
+        t += 4
+    while t < r:
+        g = taps[t]
+        a0, b0 = pv[t:t + n], pv[T - 1 - t:T - 1 - t + n]
+        for i in range(n):
+            dst[i] += g * (a0[i] + b0[i])
+        t += 1
+    g = taps[r]
+    c = pv[r:r + n]
+    for i in range(n):
+        dst[i] += g * c[i]
+
+
+@jit
+def conv_rows(dst, tmp, taps, ny, nx):
+    """The same along y: row iy of dst (ny rows of nx) gains sum_t taps[t] times row iy + t of tmp."""
+    T = taps.size
+    r = (T - 1) // 2
+    for iy in range(ny):
+        d = dst[iy * nx:(iy + 1) * nx]
+        t = 0
+        while t + 4 <= r:
+            g0, g1, g2, g3 = taps[t], taps[t + 1], taps[t + 2], taps[t + 3]
+            a0, b0 = tmp[(iy + t) * nx:(iy + t + 1) * nx], tmp[(iy + T - 1 - t) * nx:(iy + T - t) * nx]
+            a1, b1 = tmp[(iy + t + 1) * nx:(iy + t + 2) * nx], tmp[(iy + T - 2 - t) * nx:(iy + T - 1 - t) * nx]
+            a2, b2 = tmp[(iy + t + 2) * nx:(iy + t + 3) * nx], tmp[(iy + T - 3 - t) * nx:(iy + T - 2 - t) * nx]
+            a3, b3 = tmp[(iy + t + 3) * nx:(iy + t + 4) * nx], tmp[(iy + T - 4 - t) * nx:(iy + T - 3 - t) * nx]
+            for i in range(nx):
+                d[i] += (g0 * (a0[i] + b0[i]) + g1 * (a1[i] + b1[i])) + (g2 * (a2[i] + b2[i]) + g3 * (a3[i] + b3[i]))
+            t += 4
+        while t < r:
+            g = taps[t]
+            a0, b0 = tmp[(iy + t) * nx:(iy + t + 1) * nx], tmp[(iy + T - 1 - t) * nx:(iy + T - t) * nx]
+            for i in range(nx):
+                d[i] += g * (a0[i] + b0[i])
+            t += 1
+        g = taps[r]
+        c = tmp[(iy + r) * nx:(iy + r + 1) * nx]
+        for i in range(nx):
+            d[i] += g * c[i]
+
+
+@jit
+def pad_line(pv, src, n, r, circular):
+    """pv = src with r positions on each side: the other end's (circular) or zeros (linear)."""
+    for i in range(r):
+        pv[i] = src[n - r + i] if circular else 0.0
+        pv[n + r + i] = src[i] if circular else 0.0
+    for i in range(n):
+        pv[r + i] = src[i]
+
+
+@jit
+def convolve_into(rv, bv, ny, nx, ty, tx, circular, pad, tmp):
+    """rv += (ty x tx) * bv over a (ny, nx) grid (ny = 1 in 1-D), zero-padded or wrapped, one axis at a time."""
+    rx = (tx.size - 1) // 2
+    if ny == 1:
+        pv = pad[:nx + 2 * rx]
+        pad_line(pv, bv, nx, rx, circular)
+        conv_line(rv, pv, tx, nx)
+        return
+    ry = (ty.size - 1) // 2
+    pv = pad[:nx + 2 * rx]
+    for iy in range(ny):
+        pad_line(pv, bv[iy * nx:(iy + 1) * nx], nx, rx, circular)
+        out = tmp[(iy + ry) * nx:(iy + ry + 1) * nx]
+        for i in range(nx):
+            out[i] = 0.0
+        conv_line(out, pv, tx, nx)
+    for k in range(ry):
+        lo = tmp[k * nx:(k + 1) * nx]
+        hi = tmp[(ny + ry + k) * nx:(ny + ry + k + 1) * nx]
+        for i in range(nx):
+            lo[i] = tmp[(ny + k) * nx + i] if circular else 0.0
+            hi[i] = tmp[(ry + k) * nx + i] if circular else 0.0
+    conv_rows(rv, tmp, ty, ny, nx)
+
+
+@jit
 def run(n_steps, u, S, S_ext, stim_item, xi, use_noise,
         dt_tau, h, beta, u0, noise_scale,
-        offsets, radius, periodic, taps_off, taps, inhib,
+        offsets, grid, inhib,
+        g_field, g_circular, g_ty_off, g_tx_off, taps_y, taps_x, g_term_ptr, t_src, t_kind, t_w,
         item_pos, K_indptr, K_indices, K_data,
         R_indptr, R_indices, R_data,
-        f, pad, rate, d, tbuf):
+        f, buf, proj, pad, tmp, rate, d, tbuf):
     P = u.size
     for step in range(n_steps):
         sigmoid(u, beta, u0, f, tbuf)
         for fi in range(offsets.size - 1):
             o = offsets[fi]
             n = offsets[fi + 1] - o
-            r = radius[fi]
-            # contiguous views keep the tap loop free of offset arithmetic, so it vectorises
+            # contiguous views keep the loops free of offset arithmetic, so they vectorise
             fv = f[o:o + n]
             rv = rate[o:o + n]
             hv = h[o:o + n]
             uv = u[o:o + n]
-            pv = pad[:n + 2 * r]
             total = 0.0
             for i in range(n):
                 total += fv[i]
-            wrap = periodic[fi]
-            for i in range(r):
-                pv[i] = fv[n - r + i] if wrap else 0.0
-                pv[n + r + i] = fv[i] if wrap else 0.0
-            for i in range(n):
-                pv[r + i] = fv[i]
             base = -inhib[fi] * total
             for i in range(n):
                 rv[i] = base + hv[i] - uv[i]
-            tv = taps[taps_off[fi]:taps_off[fi + 1]]
-            for t in range(2 * r + 1):
-                g = tv[t]
-                for i in range(n):
-                    rv[i] += g * pv[i + t]
+        for g in range(g_field.size):
+            fi = g_field[g]
+            o = offsets[fi]
+            n = offsets[fi + 1] - o
+            bv = buf[:n]
+            gather(g_term_ptr[g], g_term_ptr[g + 1], offsets, grid, t_src, t_kind, t_w, f, bv, grid[fi, 0], grid[fi, 1], proj)
+            convolve_into(rate[o:o + n], bv, grid[fi, 0], grid[fi, 1],
+                          taps_y[g_ty_off[g]:g_ty_off[g + 1]], taps_x[g_tx_off[g]:g_tx_off[g + 1]],
+                          g_circular[g], pad, tmp)
         for m in range(d.size):
             acc = stim_item[m]
             for q in range(K_indptr[m], K_indptr[m + 1]):

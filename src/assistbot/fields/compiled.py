@@ -12,7 +12,13 @@ vector of I items. Per step:
   item stimuli, with K[m, j] = k a_mj over all couplings (eq. 4);
 - coupling input rendered as Gaussians of the target field's input_sigma
   around each item centre, plus continuous stimuli S_ext;
-- Euler: u += dt/tau (-u + S + L + h) (+ noise/tau sqrt(dt) xi).
+- convolutions: every lateral kernel and continuous coupling is a *term*
+  (a source, a projection, a weight) of a *group* (a target field, a
+  boundary, a kernel shape); a group sums its terms' projected outputs and
+  convolves the sum once, per axis in 2-D. Convolution is linear, so this is
+  the sum of the separate convolutions, at the cost of one;
+- Euler: u += dt/tau (-u + S + L + C + h) (+ noise/tau sqrt(dt) xi), C the
+  continuous couplings' input.
 
 The Gaussian taps are truncated where exp(-d^2/2 sigma^2) < TRUNCATION, so
 both stepping paths compute the same sums; the untruncated reference lives
@@ -27,14 +33,138 @@ from dataclasses import dataclass
 import numpy as np
 import scipy.sparse as sp
 
-from assistbot.fields.spec import NetworkSpec
+from assistbot.fields.spec import ContinuousCouplingSpec, FieldSpec, KernelSpec, NetworkSpec
 
 TRUNCATION = 1e-10
+
+# how a term takes its source's output to the target's shape (the numba kernel switches on these)
+DIRECT, SUM_OVER_Y, SUM_OVER_X, MAX_OVER_Y, MAX_OVER_X, EXPAND_ALONG_Y, EXPAND_ALONG_X = range(7)
 
 
 def gaussian_half_width(sigma: float, dx: float) -> int:
     """Number of positions on each side where the Gaussian exceeds TRUNCATION."""
     return int(math.ceil(sigma * math.sqrt(-2.0 * math.log(TRUNCATION)) / dx))
+
+
+def kernel_taps(kernel: KernelSpec, dx: float, n: int, circular: bool) -> np.ndarray:
+    """The kernel's Gaussian along one axis of n positions, without A: ``2 r + 1`` taps, r clipped to the
+    axis (to less than half of it when circular, so no position meets the kernel twice)."""
+    if kernel.sigma == 0.0:
+        return np.ones(1)
+    r = gaussian_half_width(kernel.sigma, dx) if kernel.cutoff is None else int(math.ceil(kernel.cutoff * kernel.sigma / dx))
+    r = min(r, (n - 1) // 2 if circular else n - 1)
+    g = _gaussian(np.arange(-r, r + 1) * dx, kernel.sigma)
+    g = g / g.sum() if kernel.normalize else g
+    assert np.array_equal(g, g[::-1]), "the compiled convolution pairs mirrored taps"
+    return g
+
+
+def kernel_scale(kernel: KernelSpec, dx: float, ndim: int) -> float:
+    """What multiplies the taps' product: A dx^ndim (the integral as a sum), or A for a normalised kernel or
+    a position-to-position coupling."""
+    return kernel.A if kernel.normalize or kernel.sigma == 0.0 else kernel.A * dx**ndim
+
+
+def term_kind(c: ContinuousCouplingSpec) -> int:
+    if c.project is not None:
+        return {("sum", "y"): SUM_OVER_Y, ("sum", "x"): SUM_OVER_X,
+                ("max", "y"): MAX_OVER_Y, ("max", "x"): MAX_OVER_X}[(c.project["op"], c.project["over"])]
+    if c.expand is not None:
+        return EXPAND_ALONG_Y if c.expand == "y" else EXPAND_ALONG_X
+    return DIRECT
+
+
+def project(kind: int, f_src: np.ndarray, src_grid: tuple[int, int]) -> np.ndarray:
+    """A source output taken to its target's shape (flat), the numpy reference of the kernel's switch."""
+    if kind == DIRECT:
+        return f_src
+    ny, nx = src_grid
+    a = f_src.reshape(ny, nx)
+    if kind == SUM_OVER_Y:
+        return a.sum(axis=0)
+    if kind == SUM_OVER_X:
+        return a.sum(axis=1)
+    if kind == MAX_OVER_Y:
+        return a.max(axis=0)
+    if kind == MAX_OVER_X:
+        return a.max(axis=1)
+    raise ValueError(f"project: kind {kind} needs the target's shape; use expand()")
+
+
+def expand(kind: int, f_src: np.ndarray, tgt_grid: tuple[int, int]) -> np.ndarray:
+    ny, nx = tgt_grid
+    if kind == EXPAND_ALONG_Y:
+        return np.broadcast_to(f_src[None, :], (ny, nx)).ravel()
+    return np.broadcast_to(f_src[:, None], (ny, nx)).ravel()
+
+
+def conv_operator(taps: np.ndarray, n: int, circular: bool) -> sp.csr_matrix:
+    """(n, n) matrix of the convolution with ``taps`` along an axis of n positions."""
+    r = (taps.size - 1) // 2
+    i = np.arange(n)
+    d = np.arange(-r, r + 1)
+    j = i[:, None] + d[None, :]
+    vals = np.broadcast_to(taps, j.shape)
+    if circular:
+        ok = np.ones_like(j, dtype=bool)
+        j = j % n
+    else:
+        ok = (j >= 0) & (j < n)
+    rows = np.broadcast_to(i[:, None], j.shape)[ok]
+    return sp.csr_matrix((vals[ok], (rows, j[ok])), shape=(n, n))
+
+
+@dataclass
+class ConvTerm:
+    """One lateral kernel or continuous coupling: ``weight * P(f(u_source))`` into a group's sum."""
+
+    name: str
+    source: int  # field index
+    kind: int
+    weight: float
+    lateral: bool = False
+
+
+@dataclass
+class ConvGroup:
+    """Terms into one target field that share a kernel shape and boundary: convolved once, as their sum."""
+
+    target: int
+    circular: bool
+    taps_y: np.ndarray  # (1,) for a 1-D target
+    taps_x: np.ndarray
+    terms: list[ConvTerm]
+
+
+def _conv_groups(spec: NetworkSpec, names: list[str]) -> list[ConvGroup]:
+    fs = [spec.fields[n] for n in names]
+    groups: dict[tuple, ConvGroup] = {}
+
+    def add(name: str, target: FieldSpec, source: str, kind: int, kernel: KernelSpec, circular: bool, lateral: bool) -> None:
+        ny, nx = target.grid
+        taps_x = kernel_taps(kernel, target.dx, nx, circular)
+        taps_y = kernel_taps(kernel, target.dx, ny, circular) if target.ndim == 2 else np.ones(1)
+        key = (target.name, circular, taps_y.tobytes(), taps_x.tobytes())
+        g = groups.setdefault(key, ConvGroup(names.index(target.name), circular, taps_y, taps_x, []))
+        g.terms.append(ConvTerm(name, names.index(source), kind, kernel_scale(kernel, target.dx, target.ndim),
+                                lateral=lateral))
+
+    for f in fs:
+        if f.kernel.A != 0.0:
+            add(f"{f.name} (lateral)", f, f.name, DIRECT, f.kernel, f.periodic, True)
+    for c in spec.continuous:
+        add(c.name, spec.fields[c.target], c.source, term_kind(c), c.kernel, c.circular, False)
+    out = list(groups.values())
+    for g in out:
+        if len(g.terms) == 1:
+            # fold the one weight into the taps: a field with only its lateral kernel steps exactly as before
+            t = g.terms[0]
+            if g.taps_y.size > 1:
+                g.taps_y = t.weight * g.taps_y
+            else:
+                g.taps_x = t.weight * g.taps_x
+            t.weight = 1.0
+    return out
 
 
 @dataclass
@@ -50,19 +180,19 @@ class Compiled:
     noise_scale: np.ndarray  # noise / tau * sqrt(dt)
     field_of: np.ndarray
     # lateral interaction
-    radius: np.ndarray  # (F,) taps on each side
     periodic: np.ndarray  # (F,) bool
-    taps_off: np.ndarray  # (F+1,) into taps
-    taps: np.ndarray  # A * dx * gaussian, concatenated
-    inhib: np.ndarray  # (F,) w_inhib * dx
+    inhib: np.ndarray  # (F,) w_inhib * dx^ndim
     # items and couplings
     item_pos: np.ndarray  # (I,) flat index of each item centre
     item_off: dict[str, int]  # first item of each field in the item vector
     K: sp.csr_matrix  # (I, I)
     render: sp.csr_matrix  # (P, I) Gaussians at item centres
     render_items: sp.csr_matrix  # (I, P) transpose, item-major for the compiled path
-    lateral: sp.csr_matrix  # (P, P) Gaussian part of the kernel, block diagonal
+    lateral: sp.csr_matrix  # (P, P) Gaussian part of the 1-D fields' kernels, block diagonal
     has_noise: bool
+    grid: np.ndarray  # (F, 2) rows and columns of each field: (1, size) in 1-D
+    groups: list[ConvGroup]  # lateral kernels and continuous couplings, for the compiled path
+    continuous_terms: list[tuple[ConvGroup, ConvTerm]]  # continuous couplings and 2-D lateral kernels, for numpy
 
     @property
     def size(self) -> int:
@@ -91,29 +221,14 @@ def compile_spec(spec: NetworkSpec) -> Compiled:
     rep = lambda vals: np.repeat(np.asarray(vals, dtype=float), sizes)  # noqa: E731
 
     dt = spec.dt
-    taps_list, radius, lat_rows, lat_cols, lat_vals = [], [], [], [], []
-    for fi, f in enumerate(fs):
-        r = gaussian_half_width(f.kernel.sigma, f.dx)
-        r = min(r, (f.size - 1) // 2 if f.periodic else f.size - 1)
-        d = np.arange(-r, r + 1)
-        g = f.kernel.A * f.dx * _gaussian(d * f.dx, f.kernel.sigma)
-        taps_list.append(g)
-        radius.append(r)
-        i = np.arange(f.size)
-        j = i[:, None] + d[None, :]
-        vals = np.broadcast_to(g, j.shape)
-        if f.periodic:
-            ok = np.ones_like(j, dtype=bool)
-            j = j % f.size
-        else:
-            ok = (j >= 0) & (j < f.size)
-        lat_rows.append((np.broadcast_to(i[:, None], j.shape)[ok]) + offsets[fi])
-        lat_cols.append(j[ok] + offsets[fi])
-        lat_vals.append(vals[ok])
-    lateral = sp.csr_matrix(
-        (np.concatenate(lat_vals), (np.concatenate(lat_rows), np.concatenate(lat_cols))), shape=(P, P)
-    )
-    taps_off = np.concatenate([[0], np.cumsum([t.size for t in taps_list])]).astype(np.int64)
+    blocks = []
+    for f in fs:
+        if f.ndim == 2:
+            blocks.append(sp.csr_matrix((f.size, f.size)))  # the numpy path convolves 2-D kernels per axis
+            continue
+        taps = kernel_taps(f.kernel, f.dx, f.size, f.periodic)
+        blocks.append(conv_operator(kernel_scale(f.kernel, f.dx, 1) * taps, f.size, f.periodic))
+    lateral = sp.block_diag(blocks, format="csr")
 
     item_pos, item_off, r_rows, r_cols, r_vals = [], {}, [], [], []
     n = 0
@@ -154,6 +269,9 @@ def compile_spec(spec: NetworkSpec) -> Compiled:
         K = sp.csr_matrix((I, I))
     K.sum_duplicates()
 
+    groups = _conv_groups(spec, names)
+    continuous_terms = [(g, t) for g in groups for t in g.terms if not t.lateral or fs[g.target].ndim == 2]
+
     return Compiled(
         spec=spec,
         names=names,
@@ -164,11 +282,8 @@ def compile_spec(spec: NetworkSpec) -> Compiled:
         u0=rep([f.u0 for f in fs]),
         noise_scale=rep([f.noise / f.tau * math.sqrt(dt) for f in fs]),
         field_of=np.repeat(np.arange(len(fs)), sizes),
-        radius=np.asarray(radius, dtype=np.int64),
         periodic=np.array([f.periodic for f in fs], dtype=np.bool_),
-        taps_off=taps_off,
-        taps=np.concatenate(taps_list),
-        inhib=np.array([f.kernel.w_inhib * f.dx for f in fs]),
+        inhib=np.array([f.kernel.w_inhib * f.dx**f.ndim for f in fs]),
         item_pos=np.asarray(item_pos, dtype=np.int64),
         item_off=item_off,
         K=K,
@@ -176,4 +291,7 @@ def compile_spec(spec: NetworkSpec) -> Compiled:
         render_items=render.T.tocsr(),
         lateral=lateral,
         has_noise=any(f.noise > 0 for f in fs),
+        grid=np.array([f.grid for f in fs], dtype=np.int64).reshape(-1, 2),
+        groups=groups,
+        continuous_terms=continuous_terms,
     )

@@ -1,4 +1,4 @@
-"""A network of coupled 1-D fields, stepped as one batch, addressable by field, item and parameter path."""
+"""A network of coupled 1-D and 2-D fields, stepped as one batch, addressable by field, item and parameter path."""
 
 from __future__ import annotations
 
@@ -12,7 +12,7 @@ from assistbot.fields.compiled import Compiled, compile_spec, gaussian_half_widt
 from assistbot.fields.errors import FieldError
 from assistbot.fields.record import Recorder
 from assistbot.fields.spec import FieldSpec, KernelSpec, NetworkSpec
-from assistbot.fields.stepping import make_stepper
+from assistbot.fields.stepping import ContinuousInput, make_stepper
 
 BACKENDS = ("auto", "numpy", "numba")
 
@@ -37,7 +37,8 @@ class Network:
         self.backend_request = backend
         self.rng = np.random.default_rng(seed)
         self._recorders: list[Recorder] = []
-        self._point_stimuli: dict[tuple[str, str], tuple[float, float, float]] = {}
+        self._point_stimuli: dict[tuple[str, str], tuple[tuple[float, ...], float, float]] = {}
+        self._patterns: dict[tuple[str, str], np.ndarray] = {}
         self._compile(fresh=True)
 
     # -- construction -------------------------------------------------------------------
@@ -65,6 +66,7 @@ class Network:
         old = None if fresh else (self._c, self.state_u)
         self._c: Compiled = compile_spec(self.spec)
         self._stepper = make_stepper(self._c, self.backend_request)
+        self._continuous = ContinuousInput(self._c)
         c = self._c
         # per field: its slice of the state vector and its item centres (read-outs use them every tick)
         self._slices = {name: c.slice(name) for name in c.names}
@@ -127,31 +129,56 @@ class Network:
             self.clear_stimulus(*key)
         for key in [k for k in self._point_stimuli if field is None or k[0] == field]:
             del self._point_stimuli[key]
+        for key in [k for k in self._patterns if field is None or k[0] == field]:
+            del self._patterns[key]
         self._render_point_stimuli()
 
-    def set_stimulus_at(self, field: str, name: str, position: float, amplitude: float, sigma: float | None = None) -> None:
-        """A named Gaussian input at any position (field units), held until changed or cleared."""
+    def set_stimulus_at(self, field: str, name: str, position: float | tuple[float, float], amplitude: float,
+                        sigma: float | None = None) -> None:
+        """A named Gaussian input at any position (field units; (x, y) in a 2-D field), held until changed or
+        cleared."""
         f = self.spec.field(field)
         sigma = f.input_sigma if sigma is None else float(sigma)
-        if sigma <= 0:
+        if not sigma > 0:
             raise FieldError(f.where, "sigma", f"stimulus width must be > 0, got {sigma}")
-        self._point_stimuli[(field, name)] = (float(position), float(amplitude), sigma)
+        pos = np.atleast_1d(np.asarray(position, dtype=float))
+        if pos.shape != (f.ndim,) or not np.all(np.isfinite(pos)):
+            raise FieldError(f.where, "position", f"must be {'one number' if f.ndim == 1 else '(x, y)'}, got {position!r}")
+        self._point_stimuli[(field, name)] = (tuple(pos.tolist()), float(amplitude), sigma)
         self._render_point_stimuli()
 
     def clear_stimulus_at(self, field: str, name: str) -> None:
+        """Remove a named input set with ``set_stimulus_at`` or ``set_stimulus_pattern``."""
         self._point_stimuli.pop((field, name), None)
+        self._patterns.pop((field, name), None)
+        self._render_point_stimuli()
+
+    def set_stimulus_pattern(self, field: str, name: str, values: np.ndarray) -> None:
+        """A named input of any form: one value per position (shape (ny, nx) in 2-D), held until changed."""
+        f = self.spec.field(field)
+        arr = np.array(values, dtype=float)
+        if arr.shape != ((f.size,) if f.shape is None else tuple(f.shape)) or not np.all(np.isfinite(arr)):
+            raise FieldError(f.where, name, f"a pattern needs {f.shape or f.size} finite values, got shape {arr.shape}")
+        self._patterns[(field, name)] = arr.ravel()
         self._render_point_stimuli()
 
     def _render_point_stimuli(self) -> None:
         self._S_ext[:] = 0.0
         for (field, _), (pos, amp, sigma) in self._point_stimuli.items():
             f = self.spec.fields[field]
-            x = f.positions
-            d = x - pos
-            if f.periodic:
-                L = f.size * f.dx
-                d = (d + L / 2) % L - L / 2
-            self._S_ext[self._c.slice(field)] += amp * np.exp(-(d**2) / (2 * sigma**2))
+            ny, nx = f.grid
+            # one Gaussian per axis (x first); their outer product in 2-D
+            gs = []
+            for p, n in zip(pos, (nx, ny)):
+                d = np.arange(n) * f.dx - p
+                if f.periodic:
+                    L = n * f.dx
+                    d = (d + L / 2) % L - L / 2
+                gs.append(np.exp(-(d**2) / (2 * sigma**2)))
+            g = gs[0] if f.ndim == 1 else np.outer(gs[1], gs[0]).ravel()
+            self._S_ext[self._c.slice(field)] += amp * g
+        for (field, _), values in self._patterns.items():
+            self._S_ext[self._c.slice(field)] += values
 
     # -- dynamics -----------------------------------------------------------------------
     def step(self, n: int = 1) -> None:
@@ -192,21 +219,37 @@ class Network:
             self.spec.field(field)  # raises the FieldError naming the known fields
             raise
 
+    def _shaped(self, field: str, flat: np.ndarray) -> np.ndarray:
+        shape = self.spec.fields[field].shape
+        return flat if shape is None else flat.reshape(shape)
+
     def u(self, field: str) -> np.ndarray:
-        """Activity of a field (a view: copy it to keep it)."""
-        return self.state_u[self._slice(field)]
+        """Activity of a field (a view: copy it to keep it); (ny, nx) for a 2-D field."""
+        return self._shaped(field, self.state_u[self._slice(field)])
 
     def input(self, field: str) -> np.ndarray:
-        """Total input S(x) (stimuli + couplings) of the last step."""
-        return self._S[self._slice(field)]
+        """Total input S(x): stimuli and item couplings of the last step, plus the continuous couplings'
+        input from the outputs now (the compiled path sums those with the lateral kernels, so it does not
+        keep them apart)."""
+        sl = self._slice(field)
+        s = self._S[sl]
+        if self._continuous.feeds(sl):
+            s = s + sum(self._continuous.parts(self._outputs(), sl).values())
+        return self._shaped(field, s)
+
+    def _outputs(self) -> np.ndarray:
+        c = self._c
+        return 1.0 / (1.0 + np.exp(-np.clip(c.beta * (self.state_u - c.u0), -500, 500)))
 
     def coupling_inputs(self, field: str) -> dict[str, np.ndarray]:
         """The part of ``field``'s input S(x) that each incoming coupling gives, by coupling name, from the
-        outputs now (eq. 4: k times the table times the source items' outputs, spread like S); what S holds
-        beyond their sum is the stimuli."""
-        c, out = self._c, {}
+        outputs now (eq. 4: k times the table times the source items' outputs, spread like S; a continuous
+        coupling's kernel over its projected source); what S holds beyond their sum is the stimuli."""
+        c, sl = self._c, self._slice(field)
+        out = {}
+        if self._continuous.feeds(sl):
+            out = {name: self._shaped(field, part) for name, part in self._continuous.parts(self._outputs(), sl).items()}
         f_items = 1.0 / (1.0 + np.exp(-np.clip(c.beta[c.item_pos] * (self.state_u[c.item_pos] - c.u0[c.item_pos]), -500, 500)))
-        sl = self._slice(field)
         for cp in self.spec.couplings:
             if cp.target != field:
                 continue
@@ -225,6 +268,27 @@ class Network:
     def output(self, field: str) -> np.ndarray:
         f = self.spec.field(field)
         return 1.0 / (1.0 + np.exp(-np.clip(f.beta * (self.u(field) - f.u0), -500, 500)))
+
+    def peak_xy(self, field: str, threshold: float = 0.0) -> tuple[float, float, float] | None:
+        """(x, y, u) of a 2-D field's strongest position (field units) if above ``threshold``, refined below
+        one position by the centroid of f(u) within 4 sigma of it; None without a peak."""
+        f = self.spec.field(field)
+        if f.ndim != 2:
+            raise FieldError(f.where, "shape", "peak_xy reads 2-D fields; use peaks or peak_positions in 1-D")
+        u = self.u(field)
+        iy, ix = (int(i) for i in np.unravel_index(int(np.argmax(u)), u.shape))
+        top = float(u[iy, ix])
+        if top <= threshold:
+            return None
+        out = self.output(field)
+        r = max(1, int(round(4 * f.kernel.sigma / f.dx)))
+        y0, y1 = max(0, iy - r), min(u.shape[0], iy + r + 1)
+        x0, x1 = max(0, ix - r), min(u.shape[1], ix + r + 1)
+        w = out[y0:y1, x0:x1]
+        total = w.sum()
+        x = float((w.sum(axis=0) * np.arange(x0, x1)).sum() / total) * f.dx
+        y = float((w.sum(axis=1) * np.arange(y0, y1)).sum() / total) * f.dx
+        return x, y, top
 
     def activity(self, field: str, item: str) -> float:
         f = self.spec.field(field)
@@ -257,6 +321,8 @@ class Network:
     def peak_positions(self, field: str, threshold: float = 0.0) -> list[float]:
         """Positions (field units) of local maxima above ``threshold``, for fields without items."""
         f = self.spec.field(field)
+        if f.ndim != 1:
+            raise FieldError(f.where, "shape", "peak_positions reads 1-D fields; use peak_xy in 2-D")
         u = self.u(field)
         left = np.concatenate([[-np.inf], u[:-1]])
         right = np.concatenate([u[1:], [-np.inf]])
@@ -291,6 +357,9 @@ class Network:
             for t, row in c.table.items():
                 for s in row:
                     paths.append(f"couplings.{c.name}.table.{t}.{s}")
+        for cc in self.spec.continuous:
+            for key in ("A", "sigma"):
+                paths.append(f"couplings.{cc.name}.kernel.{key}")
         return paths
 
     def _resolve(self, path: str) -> tuple[Any, str]:
@@ -314,6 +383,10 @@ class Network:
                     if len(rest) == 3 and rest[0] == "table":
                         row = c.table.setdefault(rest[1], {})
                         return row, rest[2]
+            for cc in self.spec.continuous:
+                cn = cc.name.split(".")
+                if parts[1 : 1 + len(cn)] == cn and parts[1 + len(cn):] in (["kernel", "A"], ["kernel", "sigma"]):
+                    return cc.kernel, parts[-1]
         raise FieldError("network", path, "unknown parameter path; see Network.parameter_paths()")
 
     def get(self, path: str) -> Any:
@@ -342,8 +415,10 @@ class Network:
                             f"{c.name} (k={c.k:g})")
 
     def __repr__(self) -> str:
-        sizes = ", ".join(f"{n}[{self.spec.fields[n].size}]" for n in self._c.names)
-        return f"Network({sizes}; {len(self.spec.couplings)} couplings; dt={self.spec.dt}; backend={self.backend})"
+        sizes = ", ".join(f"{n}[{'x'.join(map(str, self.spec.fields[n].shape or [self.spec.fields[n].size]))}]"
+                          for n in self._c.names)
+        n_couplings = len(self.spec.couplings) + len(self.spec.continuous)
+        return f"Network({sizes}; {n_couplings} couplings; dt={self.spec.dt}; backend={self.backend})"
 
 
 def format_table(a: np.ndarray, rows: list[str], cols: list[str], title: str = "") -> str:

@@ -59,3 +59,18 @@ def plot_history(rec: Recorder, field: str, path: str | Path, title: str | None 
     ax_u.set_xlabel("time (s)")
     ax_s.set_title(title or field)
     return save_figure(fig, path)
+
+
+def plot_plane(panels: dict[str, np.ndarray], path: str | Path, threshold: float = 0.0) -> Path:
+    """Snapshots of 2-D fields' activity side by side (x across, y up), the threshold as a contour."""
+    plt = pyplot()
+    fig, axes = plt.subplots(1, len(panels), figsize=(5.2 * len(panels), 4.0), squeeze=False)
+    for ax, (title, u) in zip(axes[0], panels.items()):
+        im = ax.imshow(u, origin="lower", cmap="viridis", aspect="equal")
+        if u.max() > threshold > u.min():
+            ax.contour(u, levels=[threshold], colors="w", linewidths=0.8)
+        fig.colorbar(im, ax=ax, label="activity u", shrink=0.8)
+        ax.set_xlabel("x")
+        ax.set_ylabel("y")
+        ax.set_title(title, fontsize=9)
+    return save_figure(fig, path)

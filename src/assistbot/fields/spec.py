@@ -4,9 +4,15 @@ A network spec is what a user writes (a dict or a YAML file): fields with
 their parameters, and couplings between named items of fields. Every bad
 value raises `FieldError` naming the element and the parameter.
 
-Units: a field has ``size`` positions spaced ``dx`` field units apart; kernel
+Units: a field has ``size`` positions spaced ``dx`` field units apart (a 2-D
+field ``shape = [ny, nx]`` positions, ``dx`` apart along both axes); kernel
 and input widths (``sigma``, ``input_sigma``) are in field units; ``tau`` and
 ``dt`` are in seconds of simulated time.
+
+Two kinds of coupling: item couplings (eq. 4: input at the target's items from
+the presence of peaks at the source's items, through a table) and continuous
+couplings (the source's whole output, optionally projected to fewer or more
+dimensions, convolved with a Gaussian kernel), as DFT toolkits couple fields.
 """
 
 from __future__ import annotations
@@ -41,18 +47,48 @@ def _check_keys(where: str, given: Mapping[str, Any], allowed: list[str]) -> Non
             raise FieldError(where, str(key), f"unknown parameter; allowed: {', '.join(allowed)}")
 
 
+KERNEL_KEYS = ["A", "sigma", "w_inhib", "normalize", "cutoff"]
+
+
 @dataclass
 class KernelSpec:
-    """Interaction kernel of eq. (2): w(d) = A exp(-d^2 / 2 sigma^2) - w_inhib."""
+    """Interaction kernel of eq. (2): w(d) = A exp(-d^2 / 2 sigma^2) - w_inhib.
+
+    The Gaussian is sampled at the field's positions: ``A dx g(d)`` (the
+    integral of eq. 1 as a sum), or with ``normalize`` ``A g(d) / sum g`` (the
+    convention of COSIVINA and cedar, whose kernels sum to A). It is cut where
+    it falls below 1e-10 of its peak, or with ``cutoff`` at ``ceil(cutoff
+    sigma / dx)`` positions from the centre. In 2-D it is the product of one
+    such Gaussian per axis, with A and dx^2 applied once.
+    """
 
     A: float = 0.0
     sigma: float = 1.0
     w_inhib: float = 0.0
+    normalize: bool = False
+    cutoff: float | None = None
 
-    def validate(self, where: str) -> None:
-        self.A = _number(where, "kernel.A", self.A, nonneg=True)
-        self.sigma = _number(where, "kernel.sigma", self.sigma, positive=True)
+    def validate(self, where: str, *, lateral: bool = True) -> None:
+        """A lateral kernel excites (A >= 0) around a peak of positive width; a coupling's kernel may
+        inhibit (A < 0) and may have width 0 (position to position), but has no global term."""
+        self.A = _number(where, "kernel.A", self.A, nonneg=lateral)
+        self.sigma = _number(where, "kernel.sigma", self.sigma, nonneg=not lateral, positive=lateral)
         self.w_inhib = _number(where, "kernel.w_inhib", self.w_inhib, nonneg=True)
+        if not lateral and self.w_inhib:
+            raise FieldError(where, "kernel.w_inhib", "a coupling has no global term; give the target field's kernel w_inhib")
+        if not isinstance(self.normalize, bool):
+            raise FieldError(where, "kernel.normalize", f"must be true or false, got {self.normalize!r}")
+        if self.cutoff is not None:
+            self.cutoff = _number(where, "kernel.cutoff", self.cutoff, positive=True)
+
+    @classmethod
+    def from_dict(cls, where: str, d: Any) -> "KernelSpec":
+        if isinstance(d, KernelSpec):
+            return d
+        if not isinstance(d, Mapping):
+            raise FieldError(where, "kernel", f"must be a mapping with {', '.join(KERNEL_KEYS)}")
+        _check_keys(where, {f"kernel.{k}": v for k, v in d.items()}, [f"kernel.{k}" for k in KERNEL_KEYS])
+        return cls(**d)
 
 
 @dataclass
@@ -61,7 +97,9 @@ class FieldSpec:
 
     ``items`` name subpopulations placed at the centres of ``spacing``-wide
     bins, so ``size = len(items) * spacing``; a field without items gives its
-    ``size`` directly.
+    ``size`` directly. A 2-D field gives ``shape: [ny, nx]`` instead (rows
+    along y, columns along x, stored row by row) and has no items; its kernel
+    is the 2-D Gaussian and ``periodic`` wraps both axes.
     """
 
     name: str
@@ -77,13 +115,33 @@ class FieldSpec:
     input_sigma: float = 1.0
     noise: float = 0.0
     periodic: bool = False
+    shape: list[int] | None = None
 
     @property
     def where(self) -> str:
         return f"field '{self.name}'"
 
+    @property
+    def ndim(self) -> int:
+        return 1 if self.shape is None else 2
+
+    @property
+    def grid(self) -> tuple[int, int]:
+        """(rows, columns) of the field's positions: (1, size) for a 1-D field."""
+        return (1, self.size) if self.shape is None else (self.shape[0], self.shape[1])
+
     def validate(self) -> None:
         w = self.where
+        if self.shape is not None:
+            if (not isinstance(self.shape, (list, tuple)) or len(self.shape) != 2
+                    or not all(isinstance(n, (int, np.integer)) and not isinstance(n, bool) and n >= 1 for n in self.shape)):
+                raise FieldError(w, "shape", f"must be two whole numbers >= 1 (rows along y, columns along x), got {self.shape!r}")
+            if self.items:
+                raise FieldError(w, "items", "a 2-D field has no items; couple it with continuous couplings")
+            self.shape = [int(self.shape[0]), int(self.shape[1])]
+            if self.size not in (0, self.shape[0] * self.shape[1]):
+                raise FieldError(w, "size", f"{self.size} does not match shape {self.shape}; give one or the other")
+            self.size = self.shape[0] * self.shape[1]
         if not isinstance(self.items, (list, tuple)) or not all(isinstance(i, str) and i for i in self.items):
             raise FieldError(w, "items", "must be a list of non-empty item names")
         self.items = list(self.items)
@@ -112,7 +170,7 @@ class FieldSpec:
         if not isinstance(self.periodic, bool):
             raise FieldError(w, "periodic", f"must be true or false, got {self.periodic!r}")
         if not isinstance(self.kernel, KernelSpec):
-            raise FieldError(w, "kernel", "must be a mapping with A, sigma, w_inhib")
+            raise FieldError(w, "kernel", f"must be a mapping with {', '.join(KERNEL_KEYS)}")
         self.kernel.validate(w)
 
     def item_index(self, item: str) -> int:
@@ -139,8 +197,7 @@ class FieldSpec:
         d = dict(d)
         kernel = d.pop("kernel", {})
         if isinstance(kernel, Mapping):
-            _check_keys(f"field '{name}'", {f"kernel.{k}": v for k, v in kernel.items()}, ["kernel.A", "kernel.sigma", "kernel.w_inhib"])
-            kernel = KernelSpec(**kernel)
+            kernel = KernelSpec.from_dict(f"field '{name}'", kernel)
         spec = cls(name=name, kernel=kernel, **d)
         spec.validate()
         return spec
@@ -218,13 +275,112 @@ class CouplingSpec:
         return cls(**d)
 
 
+AXES = ("x", "y")
+PROJECTION_OPS = ("sum", "max")
+BOUNDARIES = ("linear", "circular")
+
+
+@dataclass
+class ContinuousCouplingSpec:
+    """Input ``kernel * P(f(u_source))`` over the whole target field, as DFT toolkits couple fields.
+
+    P is the identity when source and target have the same shape; ``project:
+    {op: sum|max, over: x|y}`` turns a 2-D source into a 1-D target along the
+    axis left (sum or max over the other); ``expand: x|y`` spreads a 1-D
+    source along that axis of a 2-D target (the source runs along the other
+    axis). The kernel (`KernelSpec` without w_inhib; ``A`` may be negative,
+    ``sigma: 0`` couples position to position) is then convolved over the
+    target's shape with a ``linear`` (zero-padded) or ``circular`` boundary,
+    by default the target field's own (``periodic``).
+    """
+
+    source: str
+    target: str
+    kernel: KernelSpec = field(default_factory=KernelSpec)
+    boundary: str | None = None
+    project: dict[str, str] | None = None
+    expand: str | None = None
+    name: str = ""
+
+    def __post_init__(self) -> None:
+        if not self.name:
+            self.name = f"{self.source}->{self.target}"
+
+    @property
+    def where(self) -> str:
+        return f"coupling '{self.name}'"
+
+    @property
+    def circular(self) -> bool:
+        return self.boundary == "circular"
+
+    def validate(self, fields_by_name: Mapping[str, FieldSpec]) -> None:
+        w = self.where
+        for key in ("source", "target"):
+            ref = getattr(self, key)
+            if ref not in fields_by_name:
+                raise FieldError(w, key, f"unknown field {ref!r}; known: {', '.join(fields_by_name)}")
+        src, tgt = fields_by_name[self.source], fields_by_name[self.target]
+        self.kernel = KernelSpec.from_dict(w, self.kernel)
+        self.kernel.validate(w, lateral=False)
+        if self.boundary is None:
+            self.boundary = "circular" if tgt.periodic else "linear"
+        if self.boundary not in BOUNDARIES:
+            raise FieldError(w, "boundary", f"must be one of {', '.join(BOUNDARIES)}, got {self.boundary!r}")
+        if src.dx != tgt.dx:
+            raise FieldError(w, "target", f"source dx {src.dx:g} and target dx {tgt.dx:g} differ; the kernel needs one grid")
+        if self.project is not None and self.expand is not None:
+            raise FieldError(w, "project", "give project (2-D to 1-D) or expand (1-D to 2-D), not both")
+        if self.project is not None:
+            if not isinstance(self.project, Mapping) or set(self.project) != {"op", "over"}:
+                raise FieldError(w, "project", "must be a mapping {op: sum|max, over: x|y}")
+            if self.project["op"] not in PROJECTION_OPS:
+                raise FieldError(w, "project.op", f"must be one of {', '.join(PROJECTION_OPS)}, got {self.project['op']!r}")
+            if self.project["over"] not in AXES:
+                raise FieldError(w, "project.over", f"must be x or y, got {self.project['over']!r}")
+            if src.ndim != 2 or tgt.ndim != 1:
+                raise FieldError(w, "project", "projects a 2-D source onto a 1-D target")
+            ny, nx = src.grid
+            left = nx if self.project["over"] == "y" else ny
+            if tgt.size != left:
+                raise FieldError(w, "target", f"has {tgt.size} positions; the projection over {self.project['over']} leaves {left}")
+        elif self.expand is not None:
+            if self.expand not in AXES:
+                raise FieldError(w, "expand", f"must be x or y, got {self.expand!r}")
+            if src.ndim != 1 or tgt.ndim != 2:
+                raise FieldError(w, "expand", "expands a 1-D source into a 2-D target")
+            ny, nx = tgt.grid
+            along_other = nx if self.expand == "y" else ny
+            if src.size != along_other:
+                raise FieldError(w, "source", f"has {src.size} positions; expanding along {self.expand} needs {along_other}")
+        elif src.grid != tgt.grid:
+            raise FieldError(w, "target", f"shape {list(tgt.grid)} differs from the source's {list(src.grid)}; "
+                                          "give project or expand to change dimensions")
+
+    @classmethod
+    def from_dict(cls, d: Mapping[str, Any], index: int) -> "ContinuousCouplingSpec":
+        where = f"coupling #{index}"
+        _check_keys(where, d, ["source", "target", "kernel", "boundary", "project", "expand", "name"])
+        for key in ("source", "target", "kernel"):
+            if key not in d:
+                raise FieldError(where, key, "is required")
+        d = dict(d)
+        d["kernel"] = KernelSpec.from_dict(where if not d.get("name") else f"coupling '{d['name']}'", d["kernel"])
+        return cls(**d)
+
+
 @dataclass
 class NetworkSpec:
-    """Fields and couplings of one network, stepped with ``dt`` seconds."""
+    """Fields and couplings of one network, stepped with ``dt`` seconds.
+
+    In a dict or YAML file both kinds of coupling sit in one ``couplings``
+    list; one with a ``kernel`` is continuous and lands in ``continuous``.
+    """
 
     dt: float = 0.005
     fields: dict[str, FieldSpec] = field(default_factory=dict)
     couplings: list[CouplingSpec] = field(default_factory=list)
+    continuous: list[ContinuousCouplingSpec] = field(default_factory=list)
 
     def validate(self) -> None:
         self.dt = _number("network", "dt", self.dt, positive=True)
@@ -238,7 +394,8 @@ class NetworkSpec:
                 raise FieldError(f.where, "tau",
                                  f"dt={self.dt} s is too large for a stable Euler step with tau={f.tau} s; need dt <= tau/2")
         names = set()
-        for c in self.couplings:
+        every: list[CouplingSpec | ContinuousCouplingSpec] = [*self.couplings, *self.continuous]
+        for c in every:
             c.validate(self.fields)
             if c.name in names:
                 raise FieldError(c.where, "name", "two couplings share this name; give one a distinct 'name'")
@@ -253,19 +410,24 @@ class NetworkSpec:
         couplings_d = d.get("couplings", []) or []
         if not isinstance(couplings_d, (list, tuple)):
             raise FieldError("network", "couplings", "must be a list of couplings")
+        for i, c in enumerate(couplings_d):
+            if not isinstance(c, Mapping):
+                raise FieldError(f"coupling #{i}", "-", f"must be a mapping, got {type(c).__name__}")
         spec = cls(
             dt=d.get("dt", 0.005),
             fields={str(n): FieldSpec.from_dict(str(n), p or {}) for n, p in fields_d.items()},
-            couplings=[CouplingSpec.from_dict(c, i) for i, c in enumerate(couplings_d)],
+            couplings=[CouplingSpec.from_dict(c, i) for i, c in enumerate(couplings_d) if "kernel" not in c],
+            continuous=[ContinuousCouplingSpec.from_dict(c, i) for i, c in enumerate(couplings_d) if "kernel" in c],
         )
         spec.validate()
         return spec
 
     def coupling(self, name: str) -> CouplingSpec:
+        """An item coupling by name."""
         for c in self.couplings:
             if c.name == name:
                 return c
-        raise FieldError("network", name, f"unknown coupling; known: {', '.join(c.name for c in self.couplings) or '(none)'}")
+        raise FieldError("network", name, f"unknown item coupling; known: {', '.join(c.name for c in self.couplings) or '(none)'}")
 
     def field(self, name: str) -> FieldSpec:
         try:

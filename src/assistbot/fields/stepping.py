@@ -10,7 +10,47 @@ from __future__ import annotations
 import numpy as np
 from scipy.special import expit
 
-from assistbot.fields.compiled import Compiled
+from assistbot.fields.compiled import EXPAND_ALONG_X, EXPAND_ALONG_Y, Compiled, conv_operator, expand, project
+
+
+class ContinuousInput:
+    """The continuous couplings' and 2-D lateral kernels' input, one term at a time, each with its own
+    convolution operators: the reference the compiled path's grouped sums are tested against, and the
+    read-out of each coupling's part."""
+
+    def __init__(self, c: Compiled) -> None:
+        self.c = c
+        self.terms = []
+        for g, t in c.continuous_terms:
+            ny, nx = (int(v) for v in c.grid[g.target])
+            op_x = conv_operator(g.taps_x, nx, g.circular)
+            op_y = conv_operator(g.taps_y, ny, g.circular) if ny > 1 else None
+            self.terms.append((t, c.slice(c.names[t.source]), tuple(int(v) for v in c.grid[t.source]),
+                               c.slice(c.names[g.target]), (ny, nx), op_y, op_x))
+
+    @staticmethod
+    def _one(f: np.ndarray, term) -> np.ndarray:
+        t, src, src_grid, _, (ny, nx), op_y, op_x = term
+        if t.kind in (EXPAND_ALONG_Y, EXPAND_ALONG_X):
+            b = t.weight * expand(t.kind, f[src], (ny, nx))
+        else:
+            b = t.weight * project(t.kind, f[src], src_grid)
+        return (op_x @ b) if op_y is None else (op_y @ (op_x @ b.reshape(ny, nx).T).T).ravel()
+
+    def total(self, f: np.ndarray) -> np.ndarray:
+        """Their input to every position of the network, from the outputs f."""
+        out = np.zeros_like(f)
+        for term in self.terms:
+            out[term[3]] += self._one(f, term)
+        return out
+
+    def feeds(self, target: slice) -> bool:
+        """Whether a continuous coupling (not a lateral kernel) feeds the target field."""
+        return any(term[3] == target and not term[0].lateral for term in self.terms)
+
+    def parts(self, f: np.ndarray, target: slice) -> dict[str, np.ndarray]:
+        """Each continuous coupling's input to the target field, by name (lateral kernels left out)."""
+        return {term[0].name: self._one(f, term) for term in self.terms if term[3] == target and not term[0].lateral}
 
 
 class NumpyStepper:
@@ -21,6 +61,7 @@ class NumpyStepper:
     def __init__(self, c: Compiled) -> None:
         self.c = c
         self._starts = c.offsets[:-1]
+        self.continuous = ContinuousInput(c)
 
     def run(self, n: int, u: np.ndarray, S: np.ndarray, S_ext: np.ndarray, stim_item: np.ndarray, xi: np.ndarray | None) -> None:
         """``n`` Euler steps; ``xi`` is (n, P) standard normal noise or None."""
@@ -34,6 +75,8 @@ class NumpyStepper:
         d = c.K @ f[c.item_pos] + stim_item
         np.add(S_ext, c.render @ d, out=S)
         rate = S + (c.lateral @ f) - inhib[c.field_of] + c.h - u
+        if self.continuous.terms:
+            rate += self.continuous.total(f)
         u += c.dt_tau * rate
         if xi is not None:
             u += c.noise_scale * xi
@@ -64,19 +107,31 @@ class NumbaStepper:
         self._kernel = _kernels().run
         self.c = c
         P, I = c.size, c.n_items
-        widest = int(np.max(np.diff(c.offsets) + 2 * c.radius))
         self._f = np.zeros(P)
-        self._pad = np.zeros(widest)
         self._rate = np.zeros(P)
         self._d = np.zeros(I)
         self._no_xi = np.zeros((1, 1))
         K, R = c.K, c.render_items
+        G = c.groups
+        terms = [t for g in G for t in g.terms]
+        cat = lambda arrays: np.concatenate(arrays) if arrays else np.zeros(0)  # noqa: E731
+        ptr = lambda sizes: np.concatenate([[0], np.cumsum(sizes)]).astype(np.int64)  # noqa: E731
+        grids = [tuple(int(v) for v in c.grid[g.target]) for g in G]
         self._static = (
             c.dt_tau, c.h, c.beta, c.u0, c.noise_scale,
-            c.offsets, c.radius, c.periodic, c.taps_off, c.taps, c.inhib,
+            c.offsets, c.grid, c.inhib,
+            np.array([g.target for g in G], dtype=np.int64), np.array([g.circular for g in G], dtype=np.bool_),
+            ptr([g.taps_y.size for g in G]), ptr([g.taps_x.size for g in G]),
+            cat([g.taps_y for g in G]), cat([g.taps_x for g in G]), ptr([len(g.terms) for g in G]),
+            np.array([t.source for t in terms], dtype=np.int64), np.array([t.kind for t in terms], dtype=np.int64),
+            np.array([t.weight for t in terms], dtype=float),
             c.item_pos, K.indptr.astype(np.int64), K.indices.astype(np.int64), K.data,
             R.indptr.astype(np.int64), R.indices.astype(np.int64), R.data,
-            self._f, self._pad, self._rate, self._d, np.zeros(P),
+            self._f, np.zeros(P),
+            np.zeros(int(np.max(c.grid))),
+            np.zeros(max([nx + g.taps_x.size for g, (_, nx) in zip(G, grids)], default=1)),
+            np.zeros(max([(ny + g.taps_y.size) * nx for g, (ny, nx) in zip(G, grids)], default=1)),
+            self._rate, self._d, np.zeros(P),
         )
 
     def run(self, n: int, u: np.ndarray, S: np.ndarray, S_ext: np.ndarray, stim_item: np.ndarray, xi: np.ndarray | None) -> None:
