@@ -16,6 +16,7 @@ from assistbot.fields.compiled import DIRECT, EXPAND_ALONG_Y, MAX_OVER_X, MAX_OV
 # the check keeps the loop from vectorising); no division here can meet zero. "contract" lets a * b + c be
 # one fused multiply-add, rounded once (so at least as exact); no other fast-math licence is given.
 jit = numba.njit(cache=True, nogil=True, error_model="numpy", fastmath={"contract"})
+inlined = numba.njit(cache=True, nogil=True, error_model="numpy", fastmath={"contract"}, inline="always")
 
 # exp(z) = 2^k e^r with k = round(z / ln 2), |r| <= ln(2)/2: a degree-12 Taylor
 # polynomial of e^r is exact to double precision there (< 4e-16 relative, tested
@@ -27,6 +28,16 @@ LN2_HI = 6.93147180369123816490e-01
 LN2_LO = 1.90821492927058770002e-10
 MAGIC = 6755399441055744.0
 MAGIC_BITS = int(np.array([MAGIC]).view(np.int64)[0])
+
+
+@numba.njit(cache=True, nogil=True, fastmath={"reassoc", "contract"})
+def total(fv):
+    """sum(fv), in the order a vector unit likes (reassociation allowed here only): an in-order sum waits
+    on each add and cost more than the field's sigmoid."""
+    acc = 0.0
+    for i in range(fv.size):
+        acc += fv[i]
+    return acc
 
 
 @jit
@@ -50,12 +61,20 @@ def sigmoid(u, beta, u0, f, tbuf):
     for i in range(n):
         f[i] = 1.0 / (1.0 + f[i] * tbuf[i])
 
-@jit
+@inlined
 def gather(q0, q1, offsets, grid, t_src, t_kind, t_w, f, bv, tny, tnx, proj):
     """bv = sum over the terms q0..q1 of weight * P(f(source)), P by the term's kind (see compiled)."""
-    for i in range(bv.size):
-        bv[i] = 0.0
-    for q in range(q0, q1):
+    first = q0
+    if t_kind[q0] == DIRECT:  # the common case sets bv rather than clearing it first
+        w = t_w[q0]
+        sv = f[offsets[t_src[q0]]:offsets[t_src[q0] + 1]]
+        for i in range(bv.size):
+            bv[i] = w * sv[i]
+        first = q0 + 1
+    else:
+        for i in range(bv.size):
+            bv[i] = 0.0
+    for q in range(first, q1):
         s = t_src[q]
         so = offsets[s]
         sv = f[so:offsets[s + 1]]
@@ -103,7 +122,7 @@ def gather(q0, q1, offsets, grid, t_src, t_kind, t_w, f, bv, tny, tnx, proj):
                         row[ix] += v
 
 
-@jit
+@inlined
 def conv_line(dst, pv, taps, n):
     """dst[i] += sum_t taps[t] pv[i + t] for i < n, taps symmetric (every kernel here is a Gaussian).
 
@@ -134,7 +153,7 @@ def conv_line(dst, pv, taps, n):
         dst[i] += g * c[i]
 
 
-@jit
+@inlined
 def conv_rows(dst, tmp, taps, ny, nx):
     """The same along y: row iy of dst (ny rows of nx) gains sum_t taps[t] times row iy + t of tmp."""
     T = taps.size
@@ -163,29 +182,25 @@ def conv_rows(dst, tmp, taps, ny, nx):
             d[i] += g * c[i]
 
 
-@jit
-def pad_line(pv, src, n, r, circular):
-    """pv = src with r positions on each side: the other end's (circular) or zeros (linear)."""
+@inlined
+def pad_ends(pv, n, r, circular):
+    """The r positions on each side of pv[r:r + n]: the other end's (circular) or zeros (linear)."""
     for i in range(r):
-        pv[i] = src[n - r + i] if circular else 0.0
-        pv[n + r + i] = src[i] if circular else 0.0
-    for i in range(n):
-        pv[r + i] = src[i]
+        pv[i] = pv[n + i] if circular else 0.0
+        pv[n + r + i] = pv[r + i] if circular else 0.0
 
 
-@jit
-def convolve_into(rv, bv, ny, nx, ty, tx, circular, pad, tmp):
-    """rv += (ty x tx) * bv over a (ny, nx) grid (ny = 1 in 1-D), zero-padded or wrapped, one axis at a time."""
+@inlined
+def convolve_plane(rv, bv, ny, nx, ty, tx, circular, pad, tmp):
+    """rv += (ty x tx) * bv over a (ny, nx) grid, zero-padded or wrapped, one axis at a time."""
     rx = (tx.size - 1) // 2
-    if ny == 1:
-        pv = pad[:nx + 2 * rx]
-        pad_line(pv, bv, nx, rx, circular)
-        conv_line(rv, pv, tx, nx)
-        return
     ry = (ty.size - 1) // 2
     pv = pad[:nx + 2 * rx]
     for iy in range(ny):
-        pad_line(pv, bv[iy * nx:(iy + 1) * nx], nx, rx, circular)
+        row = bv[iy * nx:(iy + 1) * nx]
+        for i in range(nx):
+            pv[rx + i] = row[i]
+        pad_ends(pv, nx, rx, circular)
         out = tmp[(iy + ry) * nx:(iy + ry + 1) * nx]
         for i in range(nx):
             out[i] = 0.0
@@ -218,21 +233,27 @@ def run(n_steps, u, S, S_ext, stim_item, xi, use_noise,
             rv = rate[o:o + n]
             hv = h[o:o + n]
             uv = u[o:o + n]
-            total = 0.0
-            for i in range(n):
-                total += fv[i]
-            base = -inhib[fi] * total
+            base = -inhib[fi] * total(fv)
             for i in range(n):
                 rv[i] = base + hv[i] - uv[i]
         for g in range(g_field.size):
             fi = g_field[g]
             o = offsets[fi]
             n = offsets[fi + 1] - o
-            bv = buf[:n]
-            gather(g_term_ptr[g], g_term_ptr[g + 1], offsets, grid, t_src, t_kind, t_w, f, bv, grid[fi, 0], grid[fi, 1], proj)
-            convolve_into(rate[o:o + n], bv, grid[fi, 0], grid[fi, 1],
-                          taps_y[g_ty_off[g]:g_ty_off[g + 1]], taps_x[g_tx_off[g]:g_tx_off[g + 1]],
-                          g_circular[g], pad, tmp)
+            ny, nx = grid[fi, 0], grid[fi, 1]
+            tx = taps_x[g_tx_off[g]:g_tx_off[g + 1]]
+            if ny == 1:
+                # the terms are summed straight into the middle of the padded line
+                r = (tx.size - 1) // 2
+                pv = pad[:n + 2 * r]
+                gather(g_term_ptr[g], g_term_ptr[g + 1], offsets, grid, t_src, t_kind, t_w, f, pv[r:r + n], ny, nx, proj)
+                pad_ends(pv, n, r, g_circular[g])
+                conv_line(rate[o:o + n], pv, tx, n)
+            else:
+                bv = buf[:n]
+                gather(g_term_ptr[g], g_term_ptr[g + 1], offsets, grid, t_src, t_kind, t_w, f, bv, ny, nx, proj)
+                convolve_plane(rate[o:o + n], bv, ny, nx, taps_y[g_ty_off[g]:g_ty_off[g + 1]], tx, g_circular[g],
+                               pad, tmp)
         for m in range(d.size):
             acc = stim_item[m]
             for q in range(K_indptr[m], K_indptr[m + 1]):
