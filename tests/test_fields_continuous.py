@@ -77,7 +77,7 @@ def test_both_stepping_paths_compute_the_same_sums():
     assert sum(ref.u(name).max() > 0 for name in ref.field_names) >= 6
 
 
-def test_a_field_with_only_its_lateral_kernel_steps_as_the_grouped_sum_would_not_change_it():
+def test_terms_sharing_a_kernel_are_summed_before_one_convolution():
     """Sharing a kernel shape merges a lateral kernel and a coupling into one convolution; that is the
     sum of the two convolutions, which the per-term numpy path computes apart."""
     spec = mixed_spec()
@@ -298,3 +298,17 @@ def test_continuous_coupling_parameters_are_addressable_by_path():
     assert np.array_equal(net.u("b"), before), "changing a parameter keeps the activity"
     with pytest.raises(FieldError):
         net.set("couplings.b->a.kernel.w_inhib", 1.0)
+
+
+def test_a_plane_is_drawn_as_a_snapshot_not_as_a_history(tmp_path):
+    from assistbot.fields import plot_history
+    from assistbot.fields.plot import plot_plane
+
+    net = Network.from_dict({"dt": 0.005, "fields": {"P": plane()}})
+    rec = net.record(["P"])
+    net.step(3)
+    assert rec.u["P"].shape == (4, 12, 16)
+    with pytest.raises(FieldError, match="plot_plane"):
+        plot_history(rec, "P", tmp_path / "p.png")
+    png = plot_plane({"P": net.u("P")}, tmp_path / "p.png")
+    assert png.read_bytes()[:4] == b"\x89PNG"

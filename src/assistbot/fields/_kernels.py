@@ -61,6 +61,7 @@ def sigmoid(u, beta, u0, f, tbuf):
     for i in range(n):
         f[i] = 1.0 / (1.0 + f[i] * tbuf[i])
 
+
 @inlined
 def gather(q0, q1, offsets, grid, t_src, t_kind, t_w, f, bv, tny, tnx, proj):
     """bv = sum over the terms q0..q1 of weight * P(f(source)), P by the term's kind (see compiled)."""

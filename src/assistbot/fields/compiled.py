@@ -5,8 +5,8 @@ vector of I items. Per step:
 
 - f = sigmoid(u) per position (eq. 3, each field its own beta and u0);
 - lateral interaction (eq. 2): the Gaussian part as a truncated convolution
-  with the field's taps, the global inhibition as -w_inhib * dx * sum(f) of
-  the field (exact: every position of a linear or periodic field sees all
+  with the field's taps, the global inhibition as -w_inhib * dx^ndim * sum(f)
+  of the field (exact: every position of a linear or periodic field sees all
   others with the same weight);
 - coupling gates c_j = f(u(x_j)) at item centres; item drive d = K c +
   item stimuli, with K[m, j] = k a_mj over all couplings (eq. 4);
@@ -20,9 +20,10 @@ vector of I items. Per step:
 - Euler: u += dt/tau (-u + S + L + C + h) (+ noise/tau sqrt(dt) xi), C the
   continuous couplings' input.
 
-The Gaussian taps are truncated where exp(-d^2/2 sigma^2) < TRUNCATION, so
-both stepping paths compute the same sums; the untruncated reference lives
-in the tests (scipy solve_ivp on the dense equation).
+The Gaussian taps are truncated where exp(-d^2/2 sigma^2) < TRUNCATION (or
+at a kernel's ``cutoff``), so both stepping paths compute the same sums; the
+untruncated reference lives in the tests (scipy solve_ivp on the dense
+equation).
 """
 
 from __future__ import annotations
@@ -157,7 +158,7 @@ def _conv_groups(spec: NetworkSpec, names: list[str]) -> list[ConvGroup]:
     out = list(groups.values())
     for g in out:
         if len(g.terms) == 1:
-            # fold the one weight into the taps: a field with only its lateral kernel steps exactly as before
+            # a group of one term: its weight goes into the taps, one multiply per position fewer
             t = g.terms[0]
             if g.taps_y.size > 1:
                 g.taps_y = t.weight * g.taps_y
@@ -180,7 +181,6 @@ class Compiled:
     noise_scale: np.ndarray  # noise / tau * sqrt(dt)
     field_of: np.ndarray
     # lateral interaction
-    periodic: np.ndarray  # (F,) bool
     inhib: np.ndarray  # (F,) w_inhib * dx^ndim
     # items and couplings
     item_pos: np.ndarray  # (I,) flat index of each item centre
@@ -282,7 +282,6 @@ def compile_spec(spec: NetworkSpec) -> Compiled:
         u0=rep([f.u0 for f in fs]),
         noise_scale=rep([f.noise / f.tau * math.sqrt(dt) for f in fs]),
         field_of=np.repeat(np.arange(len(fs)), sizes),
-        periodic=np.array([f.periodic for f in fs], dtype=np.bool_),
         inhib=np.array([f.kernel.w_inhib * f.dx**f.ndim for f in fs]),
         item_pos=np.asarray(item_pos, dtype=np.int64),
         item_off=item_off,

@@ -35,8 +35,12 @@ def plot_history(rec: Recorder, field: str, path: str | Path, title: str | None 
     Fields with named items show one labelled line per item (the activity at
     its centre); fields without items show an image of u(x, t).
     """
-    plt = pyplot()
     spec = rec.net.spec.fields[field]
+    if spec.ndim != 1:
+        from assistbot.fields.errors import FieldError
+
+        raise FieldError(spec.where, "shape", "plot_history draws 1-D fields over time; plot_plane draws a 2-D one")
+    plt = pyplot()
     t = rec.times
     fig, (ax_s, ax_u) = plt.subplots(2, 1, figsize=(8, 5.5), sharex=True)
     if spec.items:

@@ -7,50 +7,67 @@ cached on disk; where numba is missing, "auto" falls back to numpy.
 
 from __future__ import annotations
 
+from dataclasses import dataclass
+
 import numpy as np
+import scipy.sparse as sp
 from scipy.special import expit
 
-from assistbot.fields.compiled import EXPAND_ALONG_X, EXPAND_ALONG_Y, Compiled, conv_operator, expand, project
+from assistbot.fields.compiled import EXPAND_ALONG_X, EXPAND_ALONG_Y, Compiled, ConvTerm, conv_operator, expand, project
+
+
+@dataclass
+class _Operator:
+    """One term with the slices it reads and writes and its convolution matrices (y is None in 1-D)."""
+
+    term: ConvTerm
+    source: slice
+    source_grid: tuple[int, int]
+    target: slice
+    target_grid: tuple[int, int]
+    op_y: sp.csr_matrix | None
+    op_x: sp.csr_matrix
+
+    def apply(self, f: np.ndarray) -> np.ndarray:
+        ny, nx = self.target_grid
+        t = self.term
+        if t.kind in (EXPAND_ALONG_Y, EXPAND_ALONG_X):
+            b = t.weight * expand(t.kind, f[self.source], self.target_grid)
+        else:
+            b = t.weight * project(t.kind, f[self.source], self.source_grid)
+        if self.op_y is None:
+            return self.op_x @ b
+        return (self.op_y @ (self.op_x @ b.reshape(ny, nx).T).T).ravel()
 
 
 class ContinuousInput:
     """The continuous couplings' and 2-D lateral kernels' input, one term at a time, each with its own
-    convolution operators: the reference the compiled path's grouped sums are tested against, and the
+    convolution matrices: the reference the compiled path's grouped sums are tested against, and the
     read-out of each coupling's part."""
 
     def __init__(self, c: Compiled) -> None:
-        self.c = c
-        self.terms = []
+        self.terms: list[_Operator] = []
         for g, t in c.continuous_terms:
             ny, nx = (int(v) for v in c.grid[g.target])
-            op_x = conv_operator(g.taps_x, nx, g.circular)
-            op_y = conv_operator(g.taps_y, ny, g.circular) if ny > 1 else None
-            self.terms.append((t, c.slice(c.names[t.source]), tuple(int(v) for v in c.grid[t.source]),
-                               c.slice(c.names[g.target]), (ny, nx), op_y, op_x))
-
-    @staticmethod
-    def _one(f: np.ndarray, term) -> np.ndarray:
-        t, src, src_grid, _, (ny, nx), op_y, op_x = term
-        if t.kind in (EXPAND_ALONG_Y, EXPAND_ALONG_X):
-            b = t.weight * expand(t.kind, f[src], (ny, nx))
-        else:
-            b = t.weight * project(t.kind, f[src], src_grid)
-        return (op_x @ b) if op_y is None else (op_y @ (op_x @ b.reshape(ny, nx).T).T).ravel()
+            self.terms.append(_Operator(
+                t, c.slice(c.names[t.source]), (int(c.grid[t.source][0]), int(c.grid[t.source][1])),
+                c.slice(c.names[g.target]), (ny, nx),
+                conv_operator(g.taps_y, ny, g.circular) if ny > 1 else None, conv_operator(g.taps_x, nx, g.circular)))
 
     def total(self, f: np.ndarray) -> np.ndarray:
         """Their input to every position of the network, from the outputs f."""
         out = np.zeros_like(f)
-        for term in self.terms:
-            out[term[3]] += self._one(f, term)
+        for op in self.terms:
+            out[op.target] += op.apply(f)
         return out
 
     def feeds(self, target: slice) -> bool:
         """Whether a continuous coupling (not a lateral kernel) feeds the target field."""
-        return any(term[3] == target and not term[0].lateral for term in self.terms)
+        return any(op.target == target and not op.term.lateral for op in self.terms)
 
     def parts(self, f: np.ndarray, target: slice) -> dict[str, np.ndarray]:
         """Each continuous coupling's input to the target field, by name (lateral kernels left out)."""
-        return {term[0].name: self._one(f, term) for term in self.terms if term[3] == target and not term[0].lateral}
+        return {op.term.name: op.apply(f) for op in self.terms if op.target == target and not op.term.lateral}
 
 
 class NumpyStepper:
