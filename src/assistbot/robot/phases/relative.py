@@ -35,9 +35,11 @@ class Relative(Move):
 
 
 class BackOff(Relative):
-    """Withdraw the open hand along its approach axis (back toward the robot) and up a little."""
+    """Withdraw the open hand along its approach axis (back toward the robot), level by default: the open
+    fingers may still touch what they let go of (the glass fills their widest opening), and a hand that
+    rises as it withdraws presses them against the wall and drags the object along."""
 
-    def __init__(self, name: str = "back off", distance: float = 0.14, up: float = 0.03, duration: float = 1.0) -> None:
+    def __init__(self, name: str = "back off", distance: float = 0.14, up: float = 0.0, duration: float = 1.0) -> None:
         super().__init__(name, np.zeros(3), duration=duration, tolerance=0.04)
         self.distance, self.up = distance, up
 

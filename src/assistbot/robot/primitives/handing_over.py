@@ -55,7 +55,7 @@ def give(timeout: float) -> list[Phase]:
         wait,
         Wait("feel the pull", 0.3),
         Open("let go"), SetCarrying(False),
-        BackOff("back off", distance=0.16, up=0.0, duration=1.2),
+        BackOff("back off", distance=0.16, duration=1.2),
         *retract_phases(),
     ]
 
