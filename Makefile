@@ -38,7 +38,7 @@ test: $(STAMP)
 
 # The linter (ruff, configured in pyproject.toml) and the type check (mypy on fields/, task/, cognition/).
 lint: $(STAMP)
-	$(BIN)/ruff check src tests benchmarks
+	$(BIN)/ruff check src tests benchmarks examples
 	$(BIN)/mypy
 
 test-all: $(STAMP)

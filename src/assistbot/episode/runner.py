@@ -109,34 +109,45 @@ class Episode:
         self._task_seen = 0      # the task's world events logged
         self.last_percept: Percept | None = None
         self.last_decision: Decision | None = None
+        self._tick = 0
 
     # -- the loop -----------------------------------------------------------------------------------
     def run(self, progress: Callable[[float], None] | None = None) -> EpisodeResult:
-        w, tick = self.world, 0
         while True:
-            t = w.time
-            if tick % PERCEPTION_EVERY == 0:
-                decision = self._perceive_and_decide(t)
-            else:
-                with self._clock("cognition"):
-                    decision = self.agent.between(t)
-            self._carry_out(t, decision)
-            with self._clock("robot"):
-                self.actor.tick(t, CONTROL_DT)
-            with self._clock("human"):
-                self.partner.tick(t)
-            self._take_partner_events()
-            self._video_frame(t)
-            with self._clock("physics"):
-                w.step(self._n_sub)
-            tick += 1
+            t = self.world.time
+            over = self.tick()
             if progress is not None:
-                progress(w.time)
-            over = self.task.stepped(w.time, CONTROL_DT)
-            self._log_task_events()
+                progress(self.world.time)
             if over:
                 # a physics that blew up resets its clock to 0: the episode then ended at this tick
-                return self._result(w.time if w.time >= t else t)
+                return self._result(self.world.time if self.world.time >= t else t)
+
+    def tick(self) -> bool:
+        """One control tick (perceive and decide every PERCEPTION_EVERY-th, act, the person, physics); True
+        once the episode is over. `run` loops over it; `assistbot.env` steps it from outside."""
+        w, t = self.world, self.world.time
+        if self._tick % PERCEPTION_EVERY == 0:
+            decision = self._perceive_and_decide(t)
+        else:
+            with self._clock("cognition"):
+                decision = self.agent.between(t)
+        self._carry_out(t, decision)
+        with self._clock("robot"):
+            self.actor.tick(t, CONTROL_DT)
+        with self._clock("human"):
+            self.partner.tick(t)
+        self._take_partner_events()
+        self._video_frame(t)
+        with self._clock("physics"):
+            w.step(self._n_sub)
+        self._tick += 1
+        over = self.task.stepped(w.time, CONTROL_DT)
+        self._log_task_events()
+        return over
+
+    def result(self, t_end: float | None = None) -> EpisodeResult:
+        """The summary so far (at the end: what `run` returns)."""
+        return self._result(self.world.time if t_end is None else t_end)
 
     def _perceive_and_decide(self, t: float) -> Decision:
         c0 = time.perf_counter()
