@@ -7,12 +7,14 @@ Decision level: steps of one perception tick (0.1 s simulated: 5 control ticks o
 the executor, one percept) with no new decision, so that the figure is the world's cost, not an agent's.
 Joint level: steps of one control tick (20 ms), the arm held still. Oracle and vision perception. Two envs
 run in `gymnasium.vector.AsyncVectorEnv`, one process each; on a 2-core machine two can be at most twice
-one. "x real time" is simulated seconds per wall second, per env.
+one. "x real time" is simulated seconds per wall second, per env. The worker processes are spawned, not
+forked: a fork of a process that has already stepped an episode can hang in the child.
 """
 
 from __future__ import annotations
 
 import argparse
+import sys
 import time
 
 import gymnasium as gym
@@ -63,12 +65,13 @@ def main() -> None:
             a = still(env.action_space)
             one = rate(lambda: env.step(a), dt, args.seconds)
             env.close()
-            envs = gym.vector.AsyncVectorEnv([make(level, perception)] * 2)
+            envs = gym.vector.AsyncVectorEnv([make(level, perception)] * 2, context="spawn")
             envs.reset(seed=[0, 1])
             a2 = still(envs.action_space, 2) if level == "decision" else still(envs.action_space)
             each = rate(lambda: envs.step(a2), dt, args.seconds)
             envs.close()
             print(f"{level:9} {perception:10} {one:8.1f} {one * dt:7.2f} {each:13.1f} {each * dt:7.2f} {2 * each:14.1f}")
+            sys.stdout.flush()
 
 
 if __name__ == "__main__":

@@ -145,7 +145,8 @@ def test_joint_velocity_targets_move_the_arm_and_the_gripper_closes():
 
 
 def test_two_envs_run_in_parallel_processes():
-    envs = gym.vector.AsyncVectorEnv([lambda: gym.make(E.DECISION_ENV_ID, step_until="perception", **FAST)] * 2)
+    envs = gym.vector.AsyncVectorEnv([lambda: gym.make(E.DECISION_ENV_ID, step_until="perception", **FAST)] * 2,
+                                     context="spawn")
     obs, _ = envs.reset(seed=[0, 1])
     assert obs.shape == (2, len(E.OBSERVATION_NAMES))
     obs, reward, term, trunc, info = envs.step(np.zeros(2, dtype=np.int64))
