@@ -66,7 +66,7 @@ class Network:
         old = None if fresh else (self._c, self.state_u)
         self._c: Compiled = compile_spec(self.spec)
         self._stepper = make_stepper(self._c, self.backend_request)
-        self._continuous = ContinuousInput(self._c)
+        self._continuous_input: ContinuousInput | None = None
         c = self._c
         # per field: its slice of the state vector and its item centres (read-outs use them every tick)
         self._slices = {name: c.slice(name) for name in c.names}
@@ -89,7 +89,7 @@ class Network:
                 self._stim_item[self._item(*key)] = amp
         if fresh:
             self._item_stimuli: dict[tuple[str, str], float] = {}
-        self._render_point_stimuli()
+        self._render_stimuli()
 
     @property
     def backend(self) -> str:
@@ -131,7 +131,7 @@ class Network:
             del self._point_stimuli[key]
         for key in [k for k in self._patterns if field is None or k[0] == field]:
             del self._patterns[key]
-        self._render_point_stimuli()
+        self._render_stimuli()
 
     def set_stimulus_at(self, field: str, name: str, position: float | tuple[float, float], amplitude: float,
                         sigma: float | None = None) -> None:
@@ -145,24 +145,24 @@ class Network:
         if pos.shape != (f.ndim,) or not np.all(np.isfinite(pos)):
             raise FieldError(f.where, "position", f"must be {'one number' if f.ndim == 1 else '(x, y)'}, got {position!r}")
         self._point_stimuli[(field, name)] = (tuple(pos.tolist()), float(amplitude), sigma)
-        self._render_point_stimuli()
+        self._render_stimuli()
 
     def clear_stimulus_at(self, field: str, name: str) -> None:
         """Remove a named input set with ``set_stimulus_at`` or ``set_stimulus_pattern``."""
         self._point_stimuli.pop((field, name), None)
         self._patterns.pop((field, name), None)
-        self._render_point_stimuli()
+        self._render_stimuli()
 
     def set_stimulus_pattern(self, field: str, name: str, values: np.ndarray) -> None:
         """A named input of any form: one value per position (shape (ny, nx) in 2-D), held until changed."""
         f = self.spec.field(field)
         arr = np.array(values, dtype=float)
         if arr.shape != ((f.size,) if f.shape is None else tuple(f.shape)) or not np.all(np.isfinite(arr)):
-            raise FieldError(f.where, name, f"a pattern needs {f.shape or f.size} finite values, got shape {arr.shape}")
+            raise FieldError(f.where, "values", f"pattern {name!r} needs {f.shape or f.size} finite values, got shape {arr.shape}")
         self._patterns[(field, name)] = arr.ravel()
-        self._render_point_stimuli()
+        self._render_stimuli()
 
-    def _render_point_stimuli(self) -> None:
+    def _render_stimuli(self) -> None:
         self._S_ext[:] = 0.0
         for (field, _), (pos, amp, sigma) in self._point_stimuli.items():
             f = self.spec.fields[field]
@@ -218,6 +218,13 @@ class Network:
         except KeyError:
             self.spec.field(field)  # raises the FieldError naming the known fields
             raise
+
+    @property
+    def _continuous(self) -> ContinuousInput:
+        """The continuous couplings one by one, for read-outs (built when first read: stepping needs it not)."""
+        if self._continuous_input is None:
+            self._continuous_input = ContinuousInput(self._c)
+        return self._continuous_input
 
     def _shaped(self, field: str, flat: np.ndarray) -> np.ndarray:
         shape = self.spec.fields[field].shape

@@ -203,8 +203,31 @@ class FieldSpec:
         return spec
 
 
+class _Coupling:
+    """What both kinds of coupling share: two named ends and a name (by default "source->target")."""
+
+    source: str
+    target: str
+    name: str
+
+    def __post_init__(self) -> None:
+        if not self.name:
+            self.name = f"{self.source}->{self.target}"
+
+    @property
+    def where(self) -> str:
+        return f"coupling '{self.name}'"
+
+    def _ends(self, fields_by_name: Mapping[str, FieldSpec]) -> tuple[FieldSpec, FieldSpec]:
+        for key in ("source", "target"):
+            ref = getattr(self, key)
+            if ref not in fields_by_name:
+                raise FieldError(self.where, key, f"unknown field {ref!r}; known: {', '.join(fields_by_name)}")
+        return fields_by_name[self.source], fields_by_name[self.target]
+
+
 @dataclass
-class CouplingSpec:
+class CouplingSpec(_Coupling):
     """Input from items of ``source`` to items of ``target``, eq. (4), scaled by ``k``.
 
     ``table`` maps target item -> {source item: a_mj}; a matrix of shape
@@ -217,21 +240,10 @@ class CouplingSpec:
     table: dict[str, dict[str, float]] = field(default_factory=dict)
     name: str = ""
 
-    def __post_init__(self) -> None:
-        if not self.name:
-            self.name = f"{self.source}->{self.target}"
-
-    @property
-    def where(self) -> str:
-        return f"coupling '{self.name}'"
 
     def validate(self, fields_by_name: Mapping[str, FieldSpec]) -> None:
         w = self.where
-        for key in ("source", "target"):
-            ref = getattr(self, key)
-            if ref not in fields_by_name:
-                raise FieldError(w, key, f"unknown field {ref!r}; known: {', '.join(fields_by_name)}")
-        src, tgt = fields_by_name[self.source], fields_by_name[self.target]
+        src, tgt = self._ends(fields_by_name)
         if not src.items or not tgt.items:
             raise FieldError(w, "source" if not src.items else "target", "couplings connect named items; that field has none")
         self.k = _number(w, "k", self.k)
@@ -281,7 +293,7 @@ BOUNDARIES = ("linear", "circular")
 
 
 @dataclass
-class ContinuousCouplingSpec:
+class ContinuousCouplingSpec(_Coupling):
     """Input ``kernel * P(f(u_source))`` over the whole target field, as DFT toolkits couple fields.
 
     P is the identity when source and target have the same shape; ``project:
@@ -302,13 +314,6 @@ class ContinuousCouplingSpec:
     expand: str | None = None
     name: str = ""
 
-    def __post_init__(self) -> None:
-        if not self.name:
-            self.name = f"{self.source}->{self.target}"
-
-    @property
-    def where(self) -> str:
-        return f"coupling '{self.name}'"
 
     @property
     def circular(self) -> bool:
@@ -316,11 +321,7 @@ class ContinuousCouplingSpec:
 
     def validate(self, fields_by_name: Mapping[str, FieldSpec]) -> None:
         w = self.where
-        for key in ("source", "target"):
-            ref = getattr(self, key)
-            if ref not in fields_by_name:
-                raise FieldError(w, key, f"unknown field {ref!r}; known: {', '.join(fields_by_name)}")
-        src, tgt = fields_by_name[self.source], fields_by_name[self.target]
+        src, tgt = self._ends(fields_by_name)
         self.kernel = KernelSpec.from_dict(w, self.kernel)
         self.kernel.validate(w, lateral=False)
         if self.boundary is None:
