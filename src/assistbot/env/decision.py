@@ -96,8 +96,11 @@ class DrinkingEnv(gym.Env):
                  overrides: dict[str, Any] | None = None, step_until: str = "action", max_step_seconds: float = 60.0,
                  shaping: bool = True, render_mode: str | None = None, images: bool = False,
                  image_size: tuple[int, int] = (120, 160)) -> None:
+        from assistbot.episode.builder import PERCEPTIONS
         from assistbot.scenario import load_scenario
 
+        if perception not in PERCEPTIONS:
+            raise ValueError(f"perception: one of {', '.join(PERCEPTIONS)}, got {perception!r}")
         if step_until not in ("action", "perception"):
             raise ValueError(f"step_until: 'action' or 'perception', got {step_until!r}")
         if render_mode not in (None, *self.metadata["render_modes"]):
@@ -179,10 +182,6 @@ class DrinkingEnv(gym.Env):
 
     def close(self) -> None:
         self.close_episode()
-        for r in (self._renderer, self._eyes):
-            if r is not None:
-                r.close()
-        self._renderer = self._eyes = None
 
     # -- beyond gymnasium -----------------------------------------------------------------------
     def say(self, layer: str, item: str) -> None:
@@ -202,6 +201,11 @@ class DrinkingEnv(gym.Env):
         return self.episode.result()
 
     def close_episode(self) -> None:
+        """End the current episode's resources: its perception, and the renderers made for its model."""
+        for r in (self._renderer, self._eyes):
+            if r is not None:
+                r.close()
+        self._renderer = self._eyes = None
         if self.episode is not None:
             self.episode.perception.close()
             self.episode = None
