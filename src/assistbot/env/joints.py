@@ -45,10 +45,8 @@ class JointActor:
         self.world = world
         self.robot = RobotController(world.model, world.data)
         m = world.model
-        self._act = np.array([m.actuator(j).id for j in ARM_JOINTS])
-        self._range = m.actuator_ctrlrange[self._act].copy()
+        self._range = m.actuator_ctrlrange[[m.actuator(j).id for j in ARM_JOINTS]].copy()
         self._vadr = np.array([m.jnt_dofadr[m.joint(j).id] for j in ARM_JOINTS])
-        self.q_cmd = self.robot.q()
         self.velocity = np.zeros(len(ARM_JOINTS))
         self.grip = 0.0
         self.action: str | None = None
@@ -66,8 +64,9 @@ class JointActor:
         raise RuntimeError("the joint-level environment decides no actions")
 
     def tick(self, t: float, dt: float) -> None:
-        self.q_cmd = np.clip(self.q_cmd + self.velocity * dt, self._range[:, 0], self._range[:, 1])
-        self.world.data.ctrl[self._act] = self.q_cmd
+        r = self.robot
+        r.q_cmd = np.clip(r.q_cmd + self.velocity * dt, self._range[:, 0], self._range[:, 1])
+        r.hold()   # the servos' targets: the commanded configuration
         self.robot.gripper.open(1.0 - self.grip)
         self.robot.look_at(self.robot.tcp_pose().translation())
 
