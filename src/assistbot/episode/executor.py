@@ -35,6 +35,10 @@ AWAY_SECONDS = 1.0
 #: (`_offered`), and m within which a hand held still stays in them
 OFFER_WINDOW = 1.0
 STILL_HAND = 0.02
+#: s over which every frame that saw an object's state must have read it the same for the state to count
+#: as seen steadily (`_seen_state`), and s after which the last such frame is too old to go by
+STEADY_STATE = 0.3
+STATE_FRESH = 0.5
 #: postures in which the hand uses what it holds for itself
 USING = ("pour", "drink")
 #: s after the hand was last seen pouring or drinking in which it offers nothing: it first puts down what it used
@@ -65,6 +69,7 @@ class RobotExecutor:
         self._lost = False                       # ... long enough: this action's grasp is not of it
         self._hand_seen: deque[tuple[float, HandPercept]] = deque()   # the frames of the last OFFER_WINDOW showing the hand
         self._used_at = -float("inf")   # when the hand was last seen using what it holds (`USING`)
+        self._states: dict[str, tuple[str, float, float]] = {}   # object -> (state, first, last frame read so)
 
     # -- what the robot knows of its own body ------------------------------------------------
     def holding(self) -> str | None:
@@ -192,6 +197,14 @@ class RobotExecutor:
         self._rest_since = t if self._rest_since is None else self._rest_since
         return t - self._rest_since >= WAIT_REST
 
+    def _seen_state(self, name: str) -> str | None:
+        """The state of ``name`` as seen steadily: every frame that saw its state for STEADY_STATE s read it
+        the same, the last of them within STATE_FRESH s; else None (a state read once may be a misreading)."""
+        if self._percept is None or name not in self._states:
+            return None
+        state, first, last = self._states[name]
+        return state if last - first >= STEADY_STATE and self._percept.t - last <= STATE_FRESH else None
+
     def _stopper_removed(self) -> bool:
         """Seen, not known: the bottle looks open."""
         p = self._percept
@@ -224,7 +237,7 @@ class RobotExecutor:
                              locate=self._locate, stopper_removed=self._stopper_removed,
                              lifted=lambda: self._lifted(aim), partner_hand=self._partner_hand,
                              identify=lambda: self._held_out_name, seen_elsewhere=self._seen_elsewhere,
-                             offered=self._offered)
+                             offered=self._offered, seen_state=self._seen_state)
         # hidden right now (often behind the robot's own arm): start from where it was last seen;
         # the gaze goes there and the target field takes over once the cameras see it again
         self.primitive.start(self._locate(aim))
@@ -246,6 +259,10 @@ class RobotExecutor:
         if held is not None and held.seen:
             self._held_out_seen = True
         for name, o in percept.objects.items():
+            if o.seen and o.state_seen:
+                prev = self._states.get(name)
+                first = prev[1] if prev is not None and prev[0] == o.state else percept.t
+                self._states[name] = (o.state, first, percept.t)
             if o.seen:
                 self._last_seen[name] = (o.position[0], o.position[1])
                 if o.position[2] < STANDING_Z and name != percept.robot.holding:

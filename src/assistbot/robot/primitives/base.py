@@ -50,7 +50,8 @@ class Primitive:
                  partner_hand: Callable[[], tuple[float, float, float] | None] | None = None,
                  identify: Callable[[], str | None] | None = None,
                  seen_elsewhere: Callable[[], bool] | None = None,
-                 offered: Callable[[], bool] | None = None) -> None:
+                 offered: Callable[[], bool] | None = None,
+                 seen_state: Callable[[str], str | None] | None = None) -> None:
         """``obj``: the object acted on ("bottle", "glass", "held_out" for whatever the human holds out).
 
         Callbacks (all from perception, never from the physics' ground truth):
@@ -68,6 +69,8 @@ class Primitive:
                              carries away from the hand: the grasp closed on something else.
           offered()          True while the person still holds the object out (not seen doing something
                              else with it, e.g. pouring); without perception: True.
+          seen_state(name)   the state of object ``name`` ("inverted", "open", ...) as the cameras have
+                             seen it steadily of late, or None (not seen, or read one way and another).
         """
         self.robot = robot
         self.object = obj
@@ -80,6 +83,7 @@ class Primitive:
         self.identify = identify or (lambda: None)
         self.seen_elsewhere = seen_elsewhere or (lambda: False)
         self.offered = offered or (lambda: True)
+        self.seen_state = seen_state or (lambda name: None)
         self._offer: np.ndarray | None = None
         self._failure: Progress | None = None    # a failure being ended safely (Phase.fallback)
         self.released: tuple[str, tuple[float, float]] | None = None  # the object let go of last, and where

@@ -59,6 +59,13 @@ class Pour(Primitive):
                 self._glass = np.asarray(g, float)
         return super().tick(dt, target_xy)
 
+    def interrupted(self, phase) -> str:
+        # look before pouring: a glass seen upside down (turned back, or never turned: a state misread
+        # while the person held it) gets nothing; the bottle is set down again (the phase's fallback)
+        if self._k < self._tilt_k and self.seen_state("glass") == "inverted":
+            return "the glass is upside down: nothing to pour into"
+        return ""
+
     def _pour_pose(self, tilt: float) -> mink.SE3:
         """TCP pose holding the bottle rolled by ``tilt`` with the mouth, at the full tilt, over the glass centre."""
         mouth = np.array([self._glass[0], self._glass[1], TABLE_Z + catalogue.height("glass") + self.MOUTH_ABOVE_RIM])

@@ -11,7 +11,7 @@ from assistbot.robot.primitives.geometry import grasp_pose_at
 from assistbot.robot.primitives.handing_over import give
 from assistbot.robot.primitives.places import offer_point
 from assistbot.robot.primitives.reaching import reach_and_grasp_phases
-from assistbot.robot.primitives.turn_glass import turn_phases
+from assistbot.robot.primitives.turn_glass import seen_upright, turn_phases
 
 
 class TurnAndHandOver(Primitive):
@@ -22,6 +22,9 @@ class TurnAndHandOver(Primitive):
     def __init__(self, robot, obj="glass", timeout: float = 20.0, **kw):
         super().__init__(robot, obj, **kw)
         self.timeout = timeout
+
+    def interrupted(self, phase) -> str:
+        return seen_upright(self, phase)
 
     def phases(self):
         # after the roll the gripper is upside down: keep that roll while holding out

@@ -10,6 +10,15 @@ from assistbot.robot.primitives.geometry import LIFT, PRE_GRASP_BACK, side_grasp
 from assistbot.robot.primitives.reaching import reach_and_grasp_phases, retract_phases
 
 
+def seen_upright(prim: Primitive, phase: Phase) -> str:
+    """Why a turn of the glass must not go on: the cameras see it upright already (turned by the person,
+    or inverted only in a misreading), until the hand closes in on it (then it hides the glass)."""
+    if prim._k >= next(k for k, ph in enumerate(prim._phases) if ph.name == "pre-grasp"):
+        return ""
+    state = prim.seen_state("glass")
+    return "the glass is already upright" if state is not None and state != "inverted" else ""
+
+
 def turn_phases() -> list[Phase]:
     # the inverted glass is grasped at its middle too (its height is symmetric)
     return [
@@ -26,6 +35,9 @@ class TurnGlass(Primitive):
 
     def __init__(self, robot, obj="glass", **kw):
         super().__init__(robot, obj, **kw)
+
+    def interrupted(self, phase: Phase) -> str:
+        return seen_upright(self, phase)
 
     def phases(self):
         return reach_and_grasp_phases(self) + turn_phases() + [
