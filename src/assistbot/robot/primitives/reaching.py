@@ -15,21 +15,30 @@ if TYPE_CHECKING:
     from assistbot.robot.primitives.base import Primitive
 
 
-#: where the hand waits between actions (world, m); it first rises to that height, over what stands on the table
+#: where a reach starts and a retraction passes (world, m): above the robot's workspace, at a height over what
+#: stands on the table, which the hand first rises to
 READY_POSE_POS = np.array([0.30, 0.05, 1.00])
+#: where the hand waits between actions (world, m): beside the table's near edge, low, outside the head
+#: cameras' view of the table. Waiting at the ready pose, the hand hid about a third of the robot's
+#: workspace from the cameras (what the robot had just set down there among it); see docs/measurements.md
+REST_POSE_POS = np.array([0.55, -0.20, 0.88])
 
 
 def retract_phases(over_at: float | None = None) -> list[Phase]:
-    """Up, then back to the ready pose; with ``over_at`` (world z, m) the hand first rises to that
-    height and crosses to above the ready pose there, so it passes over the objects on its way."""
+    """Up, back to the ready pose, then down aside to rest (out of the cameras' view); with ``over_at`` (world
+    z, m) the hand first rises to that height and crosses to above the ready pose there, so it passes over
+    the objects on its way."""
+    rest = Move("rest", lambda p: poses.pose(mink.SO3.identity(), REST_POSE_POS), duration=1.0, tolerance=0.04)
     if over_at is None:
         return [Rise("rise", READY_POSE_POS[2]), Unroll(),
-                Move("retract", lambda p: poses.pose(mink.SO3.identity(), READY_POSE_POS), duration=1.2, tolerance=0.04)]
+                Move("retract", lambda p: poses.pose(mink.SO3.identity(), READY_POSE_POS), duration=1.2, tolerance=0.04),
+                rest]
     above = READY_POSE_POS.copy()
     above[2] = max(above[2], over_at)
     return [Rise("rise", over_at), Unroll(),
             Move("withdraw over", lambda p: poses.pose(mink.SO3.identity(), above), duration=1.2, tolerance=0.04),
-            Move("retract", lambda p: poses.pose(mink.SO3.identity(), READY_POSE_POS), duration=0.6, tolerance=0.04)]
+            Move("retract", lambda p: poses.pose(mink.SO3.identity(), READY_POSE_POS), duration=0.6, tolerance=0.04),
+            rest]
 
 
 def reach_and_grasp_phases(prim: Primitive, height: float | None = None, held_up: bool = False) -> list[Phase]:
