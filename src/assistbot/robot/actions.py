@@ -9,7 +9,7 @@ Composite actions are one primitive whose phases chain the parts:
   Grasp-hold-bottle-to-remove-cup     HoldBottleForStopper: grasp, hold out at the middle line,
                                       wait for ``stopper_removed()``, put the bottle back, let go
   Reach-turn-and-hand-over-glass      TurnAndHandOver: grasp, turn in the air, hold out, release
-                                      when ``human_holds()``
+                                      once the wrist feels the person take it
   Reach-grasp-open-bottle-fill-glass  Pour: grasp the bottle, pour into the glass at
                                       ``locate("glass")``, put the bottle back
   Reach-full-glass-to-hand-over       HandOver (glass); Hand-over-bottle: HandOver (bottle)

@@ -8,18 +8,18 @@ from assistbot.robot.phases.wait import WaitFor
 
 
 class WaitForTake(WaitFor):
-    """Hold the object out until the person takes it: seen holding it (``human_holds()``), or felt.
+    """Hold the object out until the person takes it: felt, as the wrist's force moves PULL_N away from
+    what it was once the held-out hand had come to rest, the person's grip taking up part of the load.
 
-    Felt: the wrist's force moves PULL_N away from what it was once the held-out hand had come to
-    rest, as the person's grip takes up part of the load.  With the cameras alone the robot
-    often cannot tell: the person's fingers around the object hide it in the robot's hand."""
+    Not seen: the cameras read a hand closing around the object as holding it before it does (the
+    fingers hide the object in the robot's hand), and a hand let go of too soon drops the object."""
 
     PULL_N = 0.8
     REST_SECONDS = 0.3   # the force at rest is read after this
     FELT_TICKS = 2       # in a row: one jolt is not a pull
 
     def __init__(self, name: str, timeout: float, reason: str) -> None:
-        super().__init__(name, lambda p: p.human_holds() or self._felt >= self.FELT_TICKS, timeout, reason)
+        super().__init__(name, lambda p: self._felt >= self.FELT_TICKS, timeout, reason)
 
     def start(self, prim):
         super().start(prim)

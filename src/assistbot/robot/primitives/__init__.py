@@ -22,8 +22,8 @@ The primitives (all friction grasps from the side, no welds):
                                   put the bottle back where it stood
   HoldBottleForStopper            grasp the closed bottle, hold it out upright at the middle line, wait
                                   for ``stopper_removed()``, put it back
-  HandOver, TurnAndHandOver       carry (turn first) and hold out in the hand-over zone; let go once
-                                  ``human_holds()``; withdraw
+  HandOver, TurnAndHandOver       carry (turn first) and hold out in the hand-over zone; let go once the
+                                  wrist feels the person take it (`WaitForTake`); withdraw
   Receive                         grasp what the human holds out (target: the human's hand), wait until
                                   the human lets go, put it down in the RWS
   TakeFromTable                   show a spot both reach with the open hand, wait until something is set

@@ -11,7 +11,7 @@ from assistbot.robot.primitives.reaching import reach_and_grasp_phases
 
 class HandOver(Primitive):
     """Grasp the object, carry it upright (slowly: it may be a full glass) to the hand-over zone, hold it
-    out until ``human_holds()``, let go, withdraw."""
+    out until the wrist feels the person take it (`WaitForTake`), let go, withdraw."""
 
     name = "hand_over"
 
