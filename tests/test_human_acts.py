@@ -440,6 +440,20 @@ def test_pour_fills_the_glass_on_this_side_and_puts_the_bottle_back(bottle, glas
     assert st.human_holds is None
 
 
+@pytest.mark.parametrize("glass", [(-0.06, 0.12), (-0.06, 0.0)])
+def test_a_person_who_cannot_hold_the_mouth_over_the_glass_does_not_pour_beside_it(glass):
+    """The glass at the middle line, at the edge of the person's reach: the arm gets the hand near its pose,
+    but the bottle's mouth stays off the glass; the person stops tilting before the liquid runs."""
+    w, s, hc = _setup(_arr({"zone": "HWS", "state": "open", "position": [-0.22, -0.12]},
+                           {"zone": "HWS", "state": "empty", "position": list(glass)}))
+    hc.start("pour")
+    ends = _run_until_done(hc, s, 40.0, "pour")
+    assert ends[-1].kind == "failed" and ends[-1].detail["reason"] == "could not hold the bottle over the glass", ends
+    st = w.state()
+    assert st.liquid.in_bottle >= 0.95 * st.liquid.total, st.summary()
+    assert w.data.xmat[w.body_id["bottle"]][8] > 0.99 and st.human_holds is None
+
+
 def test_an_active_person_pours_when_both_are_on_their_side_and_a_closed_bottle_cannot():
     w, s, hc = _setup(_arr({"zone": "HWS", "state": "open"}, {"zone": "HWS", "state": "empty"}), profile="active")
     hc.run(1.0, robot=s.tick)

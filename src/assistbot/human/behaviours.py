@@ -75,6 +75,10 @@ DRINK_YAW = 0.75
 POUR_TILT = np.radians(125)
 MOUTH_ABOVE_RIM = 0.03
 POUR_TIMEOUT = 6.0
+#: m (horizontally) that the bottle's mouth may be off its way over the glass once the person has tilted it
+#: so far (the fraction of POUR_TILT) that the liquid reaches the mouth: further off, the stream misses the glass
+MOUTH_TOLERANCE = 0.025
+POURS_FROM = 0.6
 
 
 @dataclass
@@ -630,23 +634,37 @@ def pour(c, timeout: float = POUR_TIMEOUT) -> Gen:
     rim = _center_base(c, "glass") + np.array([0.0, 0.0, catalogue.height("glass")])
     beside = catalogue.radius("glass") + catalogue.radius("bottle") + 0.02
 
+    def mouth_at(f: float) -> np.ndarray:
+        return rim - palm * beside * (1.0 - f) + np.array([0.0, 0.0, MOUTH_ABOVE_RIM + (1.0 - f) * catalogue.height("bottle")])
+
     def pose(f: float):
         """Fraction f of the pour: 0 upright beside the glass with its base above the rim, 1 fully tilted."""
         Rh = _rodrigues(tip, f * POUR_TILT) @ R0
-        mouth = rim - palm * beside * (1.0 - f) + np.array([0.0, 0.0, MOUTH_ABOVE_RIM + (1.0 - f) * catalogue.height("bottle")])
-        return mouth - Rh @ mouth_in_hand, Rh
+        return mouth_at(f) - Rh @ mouth_in_hand, Rh
+
+    def mouth_off(f: float) -> float:
+        """How far (m, horizontally) the bottle's mouth is, as the person sees it, from where it should be."""
+        Rb = w.data.xmat[w.body_id["bottle"]].reshape(3, 3)
+        mouth = _pos(c, "bottle") + Rb @ np.array([0.0, 0.0, catalogue.height("bottle")])
+        return float(np.linalg.norm((mouth - mouth_at(f))[:2]))
 
     p, R = pose(0.0)
     if not (yield from _move(c, p, R)):
         return False, "could not bring the bottle to the glass"
+    tilted = 0.0
     for f in np.linspace(0.2, 1.0, 5):
         p, R = pose(float(f))
-        yield from _move(c, p, R, speed=0.08, tol=0.04)
-    full = yield from _wait_until(c, lambda: w.state().glass_state == "full", timeout)
-    for f in np.linspace(0.75, 0.0, 4):
+        reached = yield from _move(c, p, R, speed=0.08, tol=0.04)
+        if not reached or (f >= POURS_FROM and mouth_off(float(f)) > MOUTH_TOLERANCE):
+            break       # the arm cannot bring the mouth over the rim: tilting on would pour beside the glass
+        tilted = float(f)
+    full = tilted == 1.0 and (yield from _wait_until(c, lambda: w.state().glass_state == "full", timeout))
+    for f in np.linspace(0.75 * tilted, 0.0, 4):
         p, R = pose(float(f))
         yield from _move(c, p, R, speed=0.08, tol=0.04)
     yield from put_down(c, "bottle", at=tuple(base0))
+    if tilted < 1.0:
+        return False, "could not hold the bottle over the glass"
     return bool(full), "glass filled" if full else "the glass did not fill"
 
 
