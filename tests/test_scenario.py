@@ -94,3 +94,27 @@ def test_list_shows_every_shipped_scenario():
     assert r.returncode == 0
     for p in shipped_scenarios():
         assert p.stem in r.stdout
+
+
+def test_run_sets_the_arrangement_and_the_partner_as_a_sweep_row_does(tmp_path):
+    """`assistbot run SCENARIO --set objects.glass.zone=HWS --set human.profile=slow` runs the episode a sweep's
+    row with those values runs: the summary's world starts from the edited arrangement."""
+    import json
+
+    p = tmp_path / "s.yaml"
+    p.write_text(GOOD.replace("time_limit: 30", "time_limit: 1"))
+    out = tmp_path / "out"
+    r = cli("run", str(p), "--no-video", "--perception", "oracle", "--out", str(out),
+            "--set", "objects.glass.zone=HWS", "--set", "objects.glass.state=full", "--set", "human.profile=slow")
+    assert r.returncode == 1 and "time limit" in r.stdout, r.stderr   # 1: did not drink in its 1 s
+    log = [json.loads(line) for line in (out / "log.jsonl").read_text().splitlines()]
+    first = next(e for e in log if e.get("kind") == "tick")
+    assert first["percept"]["objects"]["glass"]["zone"] == "HWS" and first["percept"]["objects"]["glass"]["state"] == "full"
+
+
+def test_run_with_a_bad_arrangement_value_exits_2_naming_set(tmp_path):
+    p = tmp_path / "s.yaml"
+    p.write_text(GOOD)
+    r = cli("run", str(p), "--no-video", "--set", "objects.glass.zone=TABLE")
+    assert r.returncode == 2 and r.stderr.strip().startswith("error: --set") and "objects.glass.zone" in r.stderr
+    assert "Traceback" not in r.stderr

@@ -18,7 +18,8 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument("--perception", choices=["vision", "oracle"], default="vision",
                    help="vision (the robot's cameras) or oracle (ground truth, for debugging; labelled in every output)")
     p.add_argument("--set", dest="sets", action="append", default=[], metavar="PATH=VALUE",
-                   help="override a parameter by dotted path, e.g. --set cognition.k=0.9 (repeatable)")
+                   help="override a parameter by dotted path, e.g. --set cognition.k=0.9, or set the arrangement and the "
+                        "partner as a sweep's row does, e.g. --set objects.glass.zone=HWS --set human.profile=slow (repeatable)")
     p.add_argument("--agent", default=None, metavar="AGENT",
                    help="the robot's mind instead of the scenario's: dnf (the field architecture), fsm (the "
                         "state-machine baseline) or package.module:factory")
@@ -59,8 +60,17 @@ def run(args: argparse.Namespace) -> int:
     from assistbot.episode.outputs import PARTIAL, earlier_run
     from assistbot.errors import UserError
     from assistbot.scenario import load_scenario
+    from assistbot.sweep.spec import is_scenario_path
 
     scenario = load_scenario(args.scenario)
+    overrides = parse_sets(args.sets)
+    edits = {k: v for k, v in overrides.items() if is_scenario_path(k)}
+    if edits:   # as a sweep's row sets them: objects.NAME.zone/state/position, human.profile, agent
+        from assistbot.scenario import parse_scenario
+        from assistbot.sweep.jobs import scenario_data_with
+
+        scenario = parse_scenario(scenario_data_with(scenario, edits, "--set"), scenario.path)
+        overrides = {k: v for k, v in overrides.items() if k not in edits}
     if args.agent is not None:
         import dataclasses
 
@@ -68,7 +78,6 @@ def run(args: argparse.Namespace) -> int:
 
         agent_factory(args.agent, "--agent")
         scenario = dataclasses.replace(scenario, agent=args.agent)
-    overrides = parse_sets(args.sets)
     split_overrides(overrides, "--set", scenario.agent)   # a mistake names --set, not the scenario file
     out = args.out or Path("render") / scenario.name
     if out.exists() and not out.is_dir():

@@ -93,6 +93,22 @@ def apply_object_params(scenario, values: dict[str, Any], where: str) -> dict[st
     return mapping
 
 
+def scenario_data_with(scenario, values: dict[str, Any], where: str) -> dict[str, Any]:
+    """The scenario's mapping with the values of the paths that edit it (`is_scenario_path`: objects, the
+    partner's profile, the agent) set; the other paths are overrides and are left out."""
+    from assistbot.sweep.spec import check_value
+
+    data = copy.deepcopy(scenario.raw)
+    objects = apply_object_params(scenario, values, where)
+    if objects is not None:
+        data["objects"] = objects
+    if "human.profile" in values:
+        data["human"] = {**(data.get("human") or {}), "profile": check_value("human.profile", values["human.profile"], where)}
+    if "agent" in values:
+        data["agent"] = check_value("agent", values["agent"], where)
+    return data
+
+
 def build_jobs(spec: SweepSpec) -> list[Job]:
     """Every episode of the sweep, seeds outermost (each full pass over the grid is one seed)."""
     from assistbot.scenario import load_scenario
@@ -116,14 +132,7 @@ def build_jobs(spec: SweepSpec) -> list[Job]:
         points = []
         for combo in grid:
             values = {path: (list(v) if isinstance(v, tuple) else v) for path, v in zip(paths, combo)}
-            data = copy.deepcopy(base)
-            objects = apply_object_params(scenario, values, spec.source)
-            if objects is not None:
-                data["objects"] = objects
-            if "human.profile" in values:
-                data["human"] = {**(data.get("human") or {}), "profile": check_value("human.profile", values["human.profile"], spec.source)}
-            if "agent" in values:
-                data["agent"] = check_value("agent", values["agent"], spec.source)
+            data = scenario_data_with(scenario, values, spec.source)
             data["time_limit"] = tl
             overrides = {k: check_value(k, v, spec.source) for k, v in values.items() if not is_scenario_path(k)}
             points.append((values, data, overrides))
