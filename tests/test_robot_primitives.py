@@ -16,7 +16,7 @@ from assistbot.robot import primitives as P
 from assistbot.robot.actions import ACTION_PRIMITIVES, MOTIONS
 from assistbot.robot.controller import HANDOVER_DEPTH, RobotController
 from assistbot.robot.primitives import Status
-from assistbot.robot.primitives.reaching import READY_POSE_POS
+from assistbot.robot.primitives.reaching import REST_POSE_POS
 from assistbot.robot.sim import CONTROL_DT, body_lift, body_xy, run
 from assistbot.task.drinking import ROBOT_ACTIONS
 from assistbot.world import Arrangement, build_world
@@ -101,6 +101,33 @@ def test_pour_without_a_seen_glass_fails_with_a_reason():
     assert pr.status is Status.FAILED and "glass" in pr.reason
 
 
+def test_pour_into_a_glass_seen_upside_down_is_refused_and_nothing_is_poured():
+    """The decision to fill rested on a misreading (the glass read upright once while the person held it):
+    the cameras now see it upside down, so the bottle is not tilted over it."""
+    w, robot = make("RWS:open@0.20,0.12", "RWS:inverted@0.20,-0.12")
+    prim = P.Pour(robot, "bottle", locate=lambda name: body_xy(w, name)(),
+                  seen_state=lambda name: w.state().state_of(name))
+    pr, s = run(w, prim, body_xy(w, "bottle"))
+    assert pr.status is Status.FAILED and "upside down" in pr.reason
+    settle(w, 0.5)
+    liq = w.state().liquid
+    assert liq.in_bottle == liq.total, w.state().summary()
+    assert upright(w, "bottle") and w.state().objects["bottle"].zone == "RWS"
+    assert_safe(s)
+
+
+@pytest.mark.parametrize("prim_cls", [P.TurnGlass, P.TurnAndHandOver])
+def test_a_glass_seen_upright_is_not_turned(prim_cls):
+    w, robot = make("HWS:closed", "RWS:empty@0.20,-0.12")
+    before = w.data.xpos[w.body_id["glass"]].copy()
+    prim = prim_cls(robot, seen_state=lambda name: w.state().state_of(name))
+    pr, s = run(w, prim, body_xy(w, "glass"), seconds=20.0)
+    assert pr.status is Status.FAILED and "already upright" in pr.reason
+    settle(w, 0.5)
+    assert upright(w, "glass") and np.linalg.norm(w.data.xpos[w.body_id["glass"]] - before) < 0.005
+    assert_safe(s)
+
+
 # --------------------------------------------------------------------------- stopper
 @pytest.mark.parametrize("bottle", ["0.20,0.12", "0.14,-0.18"])
 def test_bottle_held_for_the_stopper_lets_a_15N_pull_take_it_off(bottle):
@@ -171,7 +198,7 @@ def test_bottle_held_out_by_the_human_is_taken_and_held_for_the_stopper():
 def test_stopper_hold_times_out_with_a_reason():
     w, robot = make("RWS:closed", "HWS:empty")
     prim = P.HoldBottleForStopper(robot, timeout=2.0)
-    pr, s = run(w, prim, body_xy(w, "bottle"), seconds=20)
+    pr, s = run(w, prim, body_xy(w, "bottle"), seconds=25)
     assert pr.status is Status.FAILED and "stopper" in pr.reason
     assert_safe(s)
 
@@ -241,7 +268,7 @@ def test_the_hand_that_turned_the_glass_and_gave_it_comes_back_to_rest_unwound()
     pr, s, human = _give(w, robot, prim, body_xy(w, "glass"), "glass")
     assert pr.status is Status.SUCCEEDED, pr.reason
     assert [(b.name, b.status) for b in human.done][:1] == [("take_from_robot", Status.SUCCEEDED)]
-    assert np.linalg.norm(robot.tcp_pose().translation() - READY_POSE_POS) < 0.01
+    assert np.linalg.norm(robot.tcp_pose().translation() - REST_POSE_POS) < 0.04   # the rest move's tolerance
     lo, hi = robot.ik.model.jnt_range[:, 0], robot.ik.model.jnt_range[:, 1]
     assert np.all(np.minimum(robot.q() - lo, hi - robot.q()) > 0.05), robot.q()
     assert_safe(s)
@@ -279,6 +306,21 @@ def test_hand_over_without_a_taker_fails_with_a_reason():
     prim = P.HandOver(robot, "glass", timeout=6.0)
     pr, s = run(w, prim, body_xy(w, "glass"), seconds=30)
     assert pr.status is Status.FAILED and "did not take" in pr.reason
+    assert_safe(s)
+
+
+def test_a_hand_seen_holding_but_not_holding_does_not_make_the_robot_let_go():
+    """The cameras read the person's hand as holding the glass (``human_holds`` always True: a hand closing
+    around it hides it), but nobody takes it: the robot lets go only of what it feels taken, so the glass
+    is not dropped; not taken in time, it is set down for the person."""
+    w, robot = make("HWS:closed", "RWS:full@0.18,-0.10")
+    prim = P.HandOver(robot, "glass", timeout=6.0, human_holds=lambda: True)
+    pr, s = run(w, prim, body_xy(w, "glass"), seconds=40)
+    assert pr.status is Status.FAILED and "did not take" in pr.reason
+    settle(w, 0.5)
+    st = w.state()
+    assert upright(w, "glass") and w.data.xpos[w.body_id["glass"]][2] < 0.76, st.summary()
+    assert st.liquid.spilled < 0.1 * st.liquid.total, st.summary()
     assert_safe(s)
 
 
