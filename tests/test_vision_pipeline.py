@@ -497,3 +497,40 @@ def test_an_object_lying_on_its_side_is_reported_lying_and_standing_ones_are_not
     assert np.hypot(*(np.array(o.position[:2]) - w.data.xpos[w.body_id[name]][:2])) < 0.1
     other = p.objects["glass" if name == "bottle" else "bottle"]
     assert other.seen and not other.lying
+
+
+class _Reads:
+    """A hand classifier that reads every hand as ``posture`` (the likeliest), the other classes unlikely."""
+
+    def __init__(self, classes, posture):
+        self.classes, self.posture = list(classes), posture
+
+    def probabilities(self, crop, geo):
+        pr = np.full((1, len(self.classes)), 0.01)
+        pr[0, self.classes.index(self.posture)] = 0.9
+        return pr
+
+
+@pytest.mark.parametrize("lifted, posture, read", [("glass", "remove_stopper", "grasp_ag"), ("glass", "pour", "grasp_ag"),
+                                                   ("bottle", "remove_stopper", "remove_stopper"), ("bottle", "drink", "grasp_ag")])
+def test_a_posture_that_uses_another_object_than_the_one_lifted_at_the_hand_is_a_misreading(lifted, posture, read):
+    """The person holds the glass out from above: its outline, hand over a cylinder's top, may read as pulling
+    a stopper; but the glass has none. A posture that uses one object (remove_stopper and pour the bottle,
+    drink the glass) with the other lifted at the hand is read as holding what is lifted; with its own
+    object lifted there (pulling the stopper of the bottle the robot holds up) it stands."""
+    from assistbot import catalogue
+    from assistbot.cognition.percept import ObjectPercept, Percept
+    from assistbot.vision.detect import Detections, HandDetection, ObjectDetection
+
+    v = Vision()
+    v.classifiers = {**v.classifiers, "hand": _Reads(v.classifiers["hand"].classes, posture)}
+    base = 0.10                              # the lifted object's base above the table
+    end = np.array([-0.04, -0.04, base + catalogue.height(lifted) + 0.02])   # over its top: a grip from above
+    det = Detections(objects={n: ObjectDetection(n, False, None) for n in catalogue.TASK_OBJECTS},
+                     hand=HandDetection(True, position=end, proximal=end - np.array([0.25, 0.0, 0.05])))
+    objs = {"bottle": ObjectPercept("bottle", "RWS", "closed", (0.2, 0.1, 0.0)), "glass": ObjectPercept("glass", "RWS", "empty", (0.2, -0.1, 0.0))}
+    objs[lifted] = ObjectPercept(lifted, "HWS", objs[lifted].state, (-0.04, -0.04, base))
+    hp = v._hand(det, Percept(t=1.0, objects=objs))
+    assert hp.posture == read
+    if read != posture:
+        assert hp.object_in_hand == lifted

@@ -37,6 +37,8 @@ IN_HAND_END_XY = IN_HAND_XY + 0.05      # ... measured from the hand's end, whic
 HIDDEN_FINGERS = 0.10       # m of a hand that the robot's arm can hide beyond the end seen (the fingers)
 AT_TOP = 0.02               # m: a hand's end this far below an object's top, or higher, holds it from above
 HOLDING = ("grasp_ag", "grasp_sg", "pour", "drink", "remove_stopper")   # postures of a hand with something in it
+#: the postures that use one object, and that object
+USES = {"remove_stopper": "bottle", "pour": "bottle", "drink": "glass"}
 STOPPER_SEEN = 0.04         # red touching the bottle, as a share of a stopper's expected area: closed
 HAND_AT_TOP = 0.12          # m: a hand this close to the bottle's top may hide the stopper
 LOW_CONFIDENCE = 0.3        # confidence of a state the pixels cannot show (stopper covered)
@@ -181,11 +183,12 @@ class Vision:
             # then looks like a finger.  The likeliest other posture, with its (low) probability
             pr[c] = 0.0
             c = int(pr.argmax())
-        if lifted_near and hand.classes[c] not in HOLDING:
+        o = min(lifted_near, key=lambda o: _norm(np.asarray(o.position[:2]) - h.position[:2])) if lifted_near else None
+        if o is not None and (hand.classes[c] not in HOLDING or USES.get(hand.classes[c], o.type) != o.type):
             # an object lifted off the table right at the hand is in it, whatever the hand's outline looks
             # like (the robot's open hand next to it, asking for it, hides or extends the skin, and the
-            # library's scenes have no robot hand there): from above if the hand's end is over its top
-            o = min(lifted_near, key=lambda o: _norm(np.asarray(o.position[:2]) - h.position[:2]))
+            # library's scenes have no robot hand there): from above if the hand's end is over its top.
+            # A posture that uses another object (pulling a stopper off the glass held out) is a misreading
             above = h.position[2] > o.position[2] + catalogue.height(o.type) - AT_TOP
             c = hand.classes.index("grasp_ag" if above else "grasp_sg")
             pr[c] = max(float(pr[c]), o.confidence)   # as sure as the object is seen in it
@@ -194,7 +197,7 @@ class Vision:
         seen_objs = {n: np.array(o.position) for n, o in p.objects.items() if o.seen}
         hp = HandPercept(posture=posture, position=tuple(round(float(v), 4) for v in X), confidence=round(conf, 3),
                          end=tuple(round(float(v), 4) for v in h.position), end_hidden=bool(h.end_on_robot))
-        target = {"remove_stopper": "bottle", "pour": "bottle", "drink": "glass"}.get(posture)
+        target = USES.get(posture)
         if target:
             hp.directed_at = target
             if posture != "remove_stopper":
