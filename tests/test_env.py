@@ -30,12 +30,13 @@ def test_a_written_policy_drinks_through_the_env_and_the_reward_says_so():
     assert info["ground_truth"] is True, "an oracle's observation must be flagged"
     assert obs[E.OBSERVATION_NAMES.index("glass.state=empty")] == 1.0
     total, steps, done = 0.0, [], False
-    for name in SCRIPT:
+    for k, name in enumerate(SCRIPT):
         obs, r, term, trunc, info = env.step(E.ACTION_NAMES.index(name))
         total += r
         steps.append((name, info["t"]))
         done = term or trunc
-        assert not done
+        # handed the full glass, the active person may drink before the robot has finished suggesting it
+        assert not done or (k == len(SCRIPT) - 1 and term and info["end_reason"] == "drink")
     while not done:
         obs, r, term, trunc, info = env.step(0)
         total += r
@@ -43,13 +44,14 @@ def test_a_written_policy_drinks_through_the_env_and_the_reward_says_so():
     assert term and not trunc and info["end_reason"] == "drink"
     result = env.unwrapped.result()
     assert [a for _, a in result.decisions] == list(SCRIPT)
-    assert [(a["action"], a["status"]) for a in result.actions] == [(a, "succeeded") for a in SCRIPT]
+    assert [(a["action"], a["status"]) for a in result.actions][:-1] == [(a, "succeeded") for a in SCRIPT[:-1]]
+    assert result.actions[-1]["action"] == SCRIPT[-1] and result.actions[-1]["status"] in ("succeeded", "running")
     # +1 for the drink, +0.2 for filling; the touch and spill penalties are what the task measured
     touched = result.touched_person["seconds_deeper_than_1cm"]
     assert total == pytest.approx(1.2 - 0.1 * touched - result.spilled_fraction, abs=1e-6)
     # each step lasted until its action ended: the next one began after the last one's end
     ends = [a["end"] for a in result.actions]
-    assert all(t >= end for (_, t), end in zip(steps, ends))
+    assert all(end is None or t >= end for (_, t), end in zip(steps, ends))
     env.close()
 
 

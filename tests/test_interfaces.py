@@ -27,9 +27,10 @@ def test_an_agent_without_fields_runs_the_episode_from_the_scenario_file(tmp_pat
     path.write_text(yaml.safe_dump(SCENARIO))
     r = run_scenario(path, out=tmp_path / "out", perception="oracle", video=False)
     assert [a for _, a in r.decisions] == ["Reach-grasp-open-bottle-fill-glass", "Reach-full-glass-to-hand-over", "Suggest-drink"]
-    assert [(a["action"], a["status"]) for a in r.actions] == [
-        ("Reach-grasp-open-bottle-fill-glass", "succeeded"), ("Reach-full-glass-to-hand-over", "succeeded"),
-        ("Suggest-drink", "succeeded")]
+    # the active person, handed the full glass, may drink while the robot is still suggesting it
+    assert [(a["action"], a["status"]) for a in r.actions][:2] == [
+        ("Reach-grasp-open-bottle-fill-glass", "succeeded"), ("Reach-full-glass-to-hand-over", "succeeded")]
+    assert r.actions[2]["action"] == "Suggest-drink" and r.actions[2]["status"] in ("succeeded", "running")
     # the robot filled, the person took the glass from it, then drank: the task is done
     events = [e["event"] for e in r.world_events]
     assert events.index("glass_filled") < events.index("drink")
