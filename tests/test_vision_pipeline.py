@@ -528,7 +528,8 @@ def test_a_posture_that_uses_another_object_than_the_one_lifted_at_the_hand_is_a
     end = np.array([-0.04, -0.04, base + catalogue.height(lifted) + 0.02])   # over its top: a grip from above
     det = Detections(objects={n: ObjectDetection(n, False, None) for n in catalogue.TASK_OBJECTS},
                      hand=HandDetection(True, position=end, proximal=end - np.array([0.25, 0.0, 0.05])))
-    objs = {"bottle": ObjectPercept("bottle", "RWS", "closed", (0.2, 0.1, 0.0)), "glass": ObjectPercept("glass", "RWS", "empty", (0.2, -0.1, 0.0))}
+    objs = {"bottle": ObjectPercept("bottle", "RWS", "closed", (0.2, 0.1, 0.0)),
+            "glass": ObjectPercept("glass", "RWS", "empty", (0.2, -0.1, 0.0))}
     objs[lifted] = ObjectPercept(lifted, "HWS", objs[lifted].state, (-0.04, -0.04, base))
     hp = v._hand(det, Percept(t=1.0, objects=objs))
     assert hp.posture == read
