@@ -624,9 +624,13 @@ def pour(c, timeout: float = POUR_TIMEOUT) -> Gen:
         ok, why = yield from grasp(c, "bottle", "sg")
         if not ok:
             return False, why
+    def mouth_now() -> np.ndarray:
+        """Where the bottle's mouth is (world), as the person sees it."""
+        Rb = w.data.xmat[w.body_id["bottle"]].reshape(3, 3)
+        return _pos(c, "bottle") + Rb @ np.array([0.0, 0.0, catalogue.height("bottle")])
+
     hand, R0 = c.arm.hand_pose()
-    Rb = w.data.xmat[w.body_id["bottle"]].reshape(3, 3)
-    mouth_in_hand = R0.T @ (_pos(c, "bottle") + Rb @ np.array([0.0, 0.0, catalogue.height("bottle")]) - hand)
+    mouth_in_hand = R0.T @ (mouth_now() - hand)
     palm = R0[:, 1].copy()
     palm[2] = 0.0
     palm /= max(float(np.linalg.norm(palm)), 1e-9)
@@ -643,10 +647,8 @@ def pour(c, timeout: float = POUR_TIMEOUT) -> Gen:
         return mouth_at(f) - Rh @ mouth_in_hand, Rh
 
     def mouth_off(f: float) -> float:
-        """How far (m, horizontally) the bottle's mouth is, as the person sees it, from where it should be."""
-        Rb = w.data.xmat[w.body_id["bottle"]].reshape(3, 3)
-        mouth = _pos(c, "bottle") + Rb @ np.array([0.0, 0.0, catalogue.height("bottle")])
-        return float(np.linalg.norm((mouth - mouth_at(f))[:2]))
+        """How far (m, horizontally) the bottle's mouth is from where it should be at fraction f."""
+        return float(np.linalg.norm((mouth_now() - mouth_at(f))[:2]))
 
     p, R = pose(0.0)
     if not (yield from _move(c, p, R)):

@@ -206,6 +206,10 @@ class Primitive:
             k += 1
         return k
 
+    def before(self, name: str) -> bool:
+        """Whether a phase named ``name`` is still to come (not yet started, nor left out by a fallback)."""
+        return any(ph.name == name for ph in self._phases[self._k + 1:])
+
     def interrupted(self, phase: Phase) -> str:
         """Why ``phase`` must stop now, from what is perceived ("" to go on); its fallback then ends it safely."""
         return ""

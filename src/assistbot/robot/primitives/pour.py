@@ -47,13 +47,12 @@ class Pour(Primitive):
             self._glass = np.asarray(g, float)
         else:
             self._glass = self.glass_xy
-        self._tilt_k = next(i for i, ph in enumerate(self._phases) if ph.name == "tilt")
 
     def tick(self, dt: float, target_xy=None) -> Progress:
         # where the glass is, as seen, until the bottle tilts over it: at the start it may be hidden (behind
         # the arm) and known only from where the robot set it down, which is off by the offset at which the
         # hand held it
-        if self.glass_xy is None and self.progress.status is Status.RUNNING and self._k < self._tilt_k:
+        if self.glass_xy is None and self.progress.status is Status.RUNNING and self.before("tilt"):
             g = self.locate("glass")
             if g is not None:
                 self._glass = np.asarray(g, float)
@@ -62,7 +61,7 @@ class Pour(Primitive):
     def interrupted(self, phase) -> str:
         # look before pouring: a glass seen upside down (turned back, or never turned: a state misread
         # while the person held it) gets nothing; the bottle is set down again (the phase's fallback)
-        if self._k < self._tilt_k and self.seen_state("glass") == "inverted":
+        if self.before("tilt") and self.seen_state("glass") == "inverted":
             return "the glass is upside down: nothing to pour into"
         return ""
 

@@ -19,9 +19,8 @@ if TYPE_CHECKING:
 #: stands on the table, which the hand first rises to
 READY_POSE_POS = np.array([0.30, 0.05, 1.00])
 #: where the hand waits between actions (world, m): beside the table's near edge, low, outside the head
-#: cameras' view of the table. Waiting at the ready pose, the hand hid 40 % of the robot's workspace from
-#: one camera or the other (what the robot had just set down there among it), at rest 18 %, which the
-#: shoulder and upper arm hide wherever the hand is (benchmarks/arm_occlusion.py)
+#: cameras' view of the table; waiting at the ready pose it hid what the robot had just set down in its
+#: workspace (benchmarks/arm_occlusion.py measures both)
 REST_POSE_POS = np.array([0.55, -0.20, 0.88])
 
 

@@ -13,7 +13,7 @@ from assistbot.robot.primitives.reaching import reach_and_grasp_phases, retract_
 def seen_upright(prim: Primitive, phase: Phase) -> str:
     """Why a turn of the glass must not go on: the cameras see it upright already (turned by the person,
     or inverted only in a misreading), until the hand closes in on it (then it hides the glass)."""
-    if prim._k >= next(k for k, ph in enumerate(prim._phases) if ph.name == "pre-grasp"):
+    if not prim.before("pre-grasp"):
         return ""
     state = prim.seen_state("glass")
     return "the glass is already upright" if state is not None and state != "inverted" else ""
