@@ -114,6 +114,32 @@ def test_put_down_at_a_spot_by_script(obj, grip, start, spot):
     assert np.linalg.norm(np.array(o.pos[:2]) - spot) < 0.05
 
 
+def _tilt(w, obj: str) -> float:
+    return float(np.degrees(np.arccos(np.clip(w.data.xmat[w.body_id[obj]][8], -1.0, 1.0))))
+
+
+@pytest.mark.parametrize("grip", ["sg", "ag"])
+def test_an_object_held_tilted_is_put_down_upright(grip):
+    """A pour given up half way leaves the bottle tilted in the hand: put down as it is held, it would land
+    on its edge and fall over. The hand turns it upright on the way down."""
+    from assistbot.human.behaviours import _rodrigues
+
+    w, s, hc = _setup(_arr({"zone": "HWS", "state": "closed", "position": [-0.22, -0.12]}, {"zone": "RWS", "state": "empty"}))
+    hc.start("grasp", object="bottle", grip=grip)
+    _ok(_run_until_done(hc, s, 20.0, "grasp"), "grasp")
+    p, R = hc.arm.hand_pose()
+    hc.arm.move_to(p + np.array([0.0, 0.0, 0.05]), _rodrigues(np.array([0.0, 1.0, 0.0]), np.radians(50)) @ R, t=w.time)
+    hc.run(3.0, robot=s.tick)
+    assert w.human_holding() == "bottle" and _tilt(w, "bottle") > 25.0
+    spot = np.array([-0.28, 0.0])
+    hc.start("put_down", object="bottle", at=list(spot))
+    _ok(_run_until_done(hc, s, 25.0, "put_down"), "put_down")
+    hc.run(2.0, robot=s.tick)
+    o = w.state().objects["bottle"]
+    assert w.human_holding() is None and _tilt(w, "bottle") < 5.0 and o.pos[2] < layout.TABLE_Z + 0.01, w.state().summary()
+    assert np.linalg.norm(np.array(o.pos[:2]) - spot) < 0.05
+
+
 @pytest.mark.parametrize("bottle,glass,obj", [
     ({"zone": "HWS", "state": "closed"}, {"zone": "RWS", "state": "empty"}, "glass"),
     ({"zone": "RWS", "state": "closed", "position": [0.25, -0.30]}, {"zone": "HWS", "state": "empty", "position": [-0.30, 0.10]}, "glass"),

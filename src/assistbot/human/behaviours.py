@@ -314,13 +314,16 @@ def own_side_spot(c, held: str) -> np.ndarray:
 
 def put_down(c, object: str | None = None, at: tuple[float, float] | None = None) -> Gen:
     """Put the object in hand down upright at table spot `at` (default: where it is, or, held out near the
-    middle line, at a free place on this side: `own_side_spot`), let go, withdraw."""
+    middle line, at a free place on this side: `own_side_spot`), let go, withdraw. An object held tilted
+    (a pour given up half way, a grip closed at the edge of the arm's reach) is turned upright on the way,
+    or upside down if it is held more so: set down on its edge it would fall over."""
     held = c.world.human_holding()
     if held is None or (object is not None and held != object):
         return False, "nothing in hand to put down"
     base = _center_base(c, held)
     hand, R = c.arm.hand_pose()
-    offset = hand - base                                   # hand relative to the object's base
+    a = _axis(c, held)
+    straighten = _turning(a, np.array([0.0, 0.0, 1.0 if a[2] >= 0.0 else -1.0]))
     if at is not None:
         spot = np.array(at, float)
     elif base[0] > OWN_SIDE_X and held in catalogue.TASK_OBJECTS:
@@ -328,8 +331,18 @@ def put_down(c, object: str | None = None, at: tuple[float, float] | None = None
     else:
         spot = base[:2]
     target_base = np.array([spot[0], spot[1], layout.TABLE_Z + 0.004])
-    if not (yield from _move(c, target_base + offset + np.array([0, 0, 0.04]), R)):
+    # straightened, the fingers turned about the vertical toward the spot's bearing from the shoulder (as the
+    # arm reaches there; the object stays upright), if the arm can turn the hand so; else as held
+    Rs = straighten @ R
+    bearing = np.arctan2(*(spot - SHOULDER_XY)[::-1])
+    straighten = rot_z(bearing - np.arctan2(-Rs[1, 2], -Rs[0, 2])) @ straighten
+    for turn in (straighten, np.eye(3)):
+        offset = turn @ (hand - base)          # the hand relative to the object's base
+        if (yield from _move(c, target_base + offset + np.array([0, 0, 0.04]), turn @ R)):
+            break
+    else:
         return False, "could not reach the spot"
+    R = turn @ R
     yield from _move(c, target_base + offset, R, speed=0.05, tol=0.04)
     c.arm.set_posture("open")
     yield from _wait(c, 0.5)
@@ -608,6 +621,15 @@ def _rodrigues(axis: np.ndarray, angle: float) -> np.ndarray:
     a = np.asarray(axis, float) / np.linalg.norm(axis)
     K = np.array([[0, -a[2], a[1]], [a[2], 0, -a[0]], [-a[1], a[0], 0]])
     return np.eye(3) + np.sin(angle) * K + (1 - np.cos(angle)) * K @ K
+
+
+def _turning(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """The smallest rotation that turns unit vector ``a`` onto unit vector ``b`` (not opposite)."""
+    axis = np.cross(a, b)
+    s = float(np.linalg.norm(axis))
+    if s < 1e-9:
+        return np.eye(3)
+    return _rodrigues(axis, float(np.arctan2(s, float(np.dot(a, b)))))
 
 
 def pour(c, timeout: float = POUR_TIMEOUT) -> Gen:
