@@ -76,6 +76,11 @@ def check_fig5(r) -> None:
     first_said = min(u["t"] for u in r.utterances if u["source"].startswith("AEL:"))
     starts = [e for e in r.human_events if e["kind"] == "start"]
     assert starts and all(e["t"] > first_said for e in starts)
+    # the seed's fallback: the passive person shows nothing, so the robot's first step is taken without a cue;
+    # the glass she then holds out when asked is answered by receiving it (episode.cues)
+    cued = r.cues["decisions"]
+    assert [d["action"] for d in cued] == decisions and cued[0]["kind"] == "without cue", cued
+    assert all(d["kind"] == "answered" for d in cued if d["action"] == "Receive-object"), cued
     events = [e["event"] for e in r.world_events]
     assert in_order(events, ["stopper_removed", "glass_filled", "drink"]), events
     check_glass_handed_over(r)

@@ -176,7 +176,8 @@ class AgentExecutor(FakeExecutor):
             yield {"job_id": job.id, "scenario": job.scenario, **p, "seed": job.seed, "perception": job.perception,
                    "time_limit": job.time_limit, "status": "ok", "success": not fail, "time_to_drink": None if fail else 40.0,
                    "end_reason": "repeating" if fail else "drink", "end_detail": "", "decisions": "A", "n_decisions": 1,
-                   "n_failed_actions": 2 if fail else 0, "errors_communicated": 0, "spilled_fraction": 0.0,
+                   "n_failed_actions": 2 if fail else 0, "errors_communicated": 0, "answered_cues": 1 if fail else 3,
+                   "ignored_cues": 3 if fail else 1, "uncued_decisions": 2 if fail else 0, "spilled_fraction": 0.0,
                    "min_distance_human": 0.2, "touched_person": False, "touch_depth": 0.0, "touch_force": 0.0,
                    "sim_time": 40.0, "wall_seconds": 1.0, "cpu_seconds": 1.0, "scenario_sha": job.scenario_sha}
 
@@ -195,6 +196,25 @@ def test_report_by_agent_splits_each_perturbation_by_agent(tmp_path):
     assert "### perturb.cue_delay, by agent" in md
     assert "| 0 | fsm | 2 | 2 | 1.00 |" in md and "| 1 | fsm | 2 | 0 | 0.00 |" in md and "| 2 | dnf | 2 | 2 | 1.00 |" in md
     assert "| 1 | fsm | 2 | 0 | 0.00 | [0.00, 0.66] | – | – | 2.00 |" in md   # failed actions per episode
+    # then errors communicated, the share of cued decisions that ignored the cue, decisions without a cue
+    assert "| 1 | fsm | 2 | 0 | 0.00 | [0.00, 0.66] | – | – | 2.00 | 0.00 | 0.75 | 2.00 |" in md
+    assert "| 1 | dnf | 2 | 2 | 1.00 | [0.34, 1.00] | 40.0 | [40.0, 40.0] | 0.00 | 0.00 | 0.25 | 0.00 |" in md
     assert any(x.name == "success_vs_perturb.cue_delay.png" for x in paths)
     with pytest.raises(UserError, match="--by: human.profile: not a swept parameter.*agent, perturb.cue_delay"):
         write_report(out, by="human.profile")
+
+
+def test_a_results_folder_of_another_version_is_refused_with_the_reason(tmp_path):
+    """Resuming into a folder whose results lack a column this version writes: said so, not a crash; the folder
+    is left as it was."""
+    from assistbot.sweep.results import ResultStore, columns_for
+
+    ours = columns_for(["agent"])
+    old = [c for c in ours if c not in ("answered_cues", "ignored_cues", "uncued_decisions")]
+    (tmp_path / "results.csv").write_text(",".join(old) + "\n")
+    before = (tmp_path / "results.csv").read_bytes()
+    with pytest.raises(UserError, match="written by another version of assistbot.*another --out"):
+        ResultStore(tmp_path, ours).open()
+    with pytest.raises(UserError, match="holds a sweep over agent, this one sweeps human.profile"):
+        ResultStore(tmp_path, columns_for(["human.profile"])).open()
+    assert (tmp_path / "results.csv").read_bytes() == before

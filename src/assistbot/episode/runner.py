@@ -17,6 +17,7 @@ from dataclasses import dataclass, field
 from typing import Any, Callable
 
 from assistbot.cognition.percept import Decision, Percept
+from assistbot.episode.cues import CueLedger
 from assistbot.interfaces import CONTROL_DT, Actor, Agent, Partner, Perception, Status, Task
 from assistbot.speech import SpeechLog
 
@@ -45,6 +46,7 @@ class EpisodeResult:
     overrides: dict[str, Any] = field(default_factory=dict)
     touched_person: dict = field(default_factory=dict)
     end_detail: dict = field(default_factory=dict)
+    cues: dict = field(default_factory=dict)
 
     def summary(self) -> dict:
         return {
@@ -60,6 +62,7 @@ class EpisodeResult:
             "min_distance_human": round(self.min_distance_human, 4),
             "touched_person": self.touched_person,
             "errors_communicated": self.errors_communicated,
+            "cues": self.cues,
             "wall_seconds": {k: round(v, 3) for k, v in self.wall.items()},
             "overrides": self.overrides,
         }
@@ -95,6 +98,7 @@ class Episode:
             world, perception, agent, actor, partner, task)
         self.truth = truth       # ground truth for the log only (--record-truth): never reaches the agent
         self.speech = SpeechLog()
+        self.cues = CueLedger()   # each decision against the cues the agent was shown (episode.cues)
         self.log: list[dict] = []
         self.frame_every = frame_every
         self.on_frame: Callable[["Episode"], None] | None = None
@@ -154,6 +158,7 @@ class Episode:
         percept = self.perception.perceive(t, self.actor.proprioception())
         c1 = time.perf_counter()
         self.actor.see(percept)
+        self.cues.see(percept)
         decision = self.agent.update(percept)
         ended = self.actor.ended()   # the agent has seen the end in this percept's proprioception
         if ended is not None:
@@ -182,6 +187,7 @@ class Episode:
             said = [u.text for u in decision.utterances if u.layer == "AEL"]
             self.actor.begin(decision.action, t, said[0] if said else "")
             self.task.decided(t, decision.action)
+            self.cues.decided(t, decision.action)
             self.log.append({"t": round(t, 3), "kind": "decide", "action": decision.action, "target": decision.target})
 
     def _video_frame(self, t: float) -> None:
@@ -240,6 +246,7 @@ class Episode:
             actions=[{"action": r.action, "start": round(r.start, 3), "end": None if r.end is None else round(r.end, 3),
                       "status": r.status.value, "reason": r.reason} for r in self.actor.records],
             errors_communicated=sum(1 for _, a in decisions if a == "Communicate-Error"),
+            cues={**self.cues.counts(), "decisions": list(self.cues.decisions)},
             wall=dict(self.wall),
             overrides=self.overrides,
             **self.task.outcome(),

@@ -89,14 +89,17 @@ def table_rows(rows: list[dict], factor: str) -> list[tuple[Any, Cell]]:
 
 
 def _by_table(rows: list[dict], factor: str, by: str) -> list[str]:
-    """``factor``'s values x ``by``'s values: success (Wilson), time to drink, failed actions per episode."""
+    """``factor``'s values x ``by``'s values: success (Wilson), time to drink, failed actions per episode, the
+    share of decisions taken with a cue of the person's showing that ignored it, and the decisions per episode
+    taken with none showing (`assistbot.episode.cues`)."""
     out = [f"| {factor} | {by} | n | drank | success rate | 95% CI (Wilson) | time to drink (s) | 95% CI (t) | "
-           "failed actions per episode | errors communicated |", "|---|---|---:|---:|---:|---|---:|---|---:|---:|"]
+           "failed actions per episode | errors communicated | cue ignored (share of cued decisions) | "
+           "decisions without a cue per episode |", "|---|---|---:|---:|---:|---|---:|---|---:|---:|---:|---:|"]
     for v in _ordered([r.get(factor) for r in rows]):
         for b, c in table_rows([r for r in rows if _key(r.get(factor)) == v], by):
             out.append(f"| {_fmt_value(v)} | {_fmt_value(b)} | {c.n} | {c.successes} | {_f(c.rate)} | "
                        f"{_ci(c.rate_low, c.rate_high)} | {_f(c.ttd_mean, 1)} | {_ci(c.ttd_low, c.ttd_high, 1)} | "
-                       f"{_f(c.failed_mean)} | {_f(c.errors_mean)} |")
+                       f"{_f(c.failed_mean)} | {_f(c.errors_mean)} | {_f(c.ignored_share)} | {_f(c.uncued_mean)} |")
     return out
 
 
@@ -112,8 +115,8 @@ def _markdown_table(factor: str, cells: list[tuple[Any, Cell]]) -> list[str]:
 
 
 def _plot_param(rows: list[dict], param: str, scenarios: list[str], path: Path, by: str | None = None) -> None:
-    """Success and time to drink against ``param``: one line per scenario, or per value of ``by`` (then with a
-    third panel: the robot actions that failed per episode)."""
+    """Success and time to drink against ``param``: one line per scenario, or per value of ``by`` (then with two
+    more panels: the robot actions that failed per episode, and the share of cued decisions that ignored the cue)."""
     import matplotlib
 
     matplotlib.use("Agg")
@@ -122,7 +125,7 @@ def _plot_param(rows: list[dict], param: str, scenarios: list[str], path: Path, 
     values = _ordered([r.get(param) for r in rows])
     numeric = _numeric(values)
     xs_of = {v: (v if numeric else i) for i, v in enumerate(values)}
-    fig, axes = plt.subplots(1, 3 if by else 2, figsize=(15 if by else 10, 3.8), constrained_layout=True)
+    fig, axes = plt.subplots(1, 4 if by else 2, figsize=(19 if by else 10, 3.8), constrained_layout=True)
     ax1, ax2 = axes[0], axes[1]
     if by:
         groups = [(f"{by} = {_fmt_value(b)}", [r for r in rows if _key(r.get(by)) == b]) for b in _ordered([r.get(by) for r in rows])]
@@ -132,6 +135,7 @@ def _plot_param(rows: list[dict], param: str, scenarios: list[str], path: Path, 
         if by:
             cells_f = table_rows(grp, param)
             axes[2].plot([xs_of[v] for v, _ in cells_f], [c.failed_mean for _, c in cells_f], marker="^", label=label)
+            axes[3].plot([xs_of[v] for v, _ in cells_f], [c.ignored_share for _, c in cells_f], marker="v", label=label)
         cells = [(v, c) for v, c in table_rows(grp, param)]
         xs = [xs_of[v] for v, _ in cells]
         rate = [c.rate for _, c in cells]
@@ -152,7 +156,10 @@ def _plot_param(rows: list[dict], param: str, scenarios: list[str], path: Path, 
         ax2.text(0.5, 0.5, "no episode drank", ha="center", va="center", transform=ax2.transAxes, color="grey")
     if by:
         axes[2].set_ylabel("robot actions failed per episode (mean)")
-        axes[2].set_xlim(ax1.get_xlim())
+        axes[3].set_ylabel("cued decisions that ignored the cue (share)")
+        axes[3].set_ylim(-0.05, 1.05)
+        for ax in axes[2:]:
+            ax.set_xlim(ax1.get_xlim())
     for ax in axes:
         ax.set_xlabel(param)
         ax.grid(alpha=0.3)

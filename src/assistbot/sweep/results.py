@@ -8,9 +8,11 @@ rewritten from the CSV every so often, at the end and on interrupt.
 
 Columns: ``job_id, scenario, <one per swept path>, seed, perception,
 time_limit, success, time_to_drink, end_reason, end_detail, decisions, n_decisions,
-n_failed_actions, errors_communicated, spilled_fraction, min_distance_human,
-touched_person, touch_depth, touch_force, sim_time, wall_seconds, cpu_seconds,
+n_failed_actions, errors_communicated, answered_cues, ignored_cues, uncued_decisions, spilled_fraction,
+min_distance_human, touched_person, touch_depth, touch_force, sim_time, wall_seconds, cpu_seconds,
 scenario_sha``. ``decisions`` is the AEL decision sequence joined by `` > ``;
+``answered_cues``, ``ignored_cues`` and ``uncued_decisions`` count the decisions that answered a cue of the
+person's shown just before, that ignored one, and that came without one (`assistbot.episode.cues`);
 ``end_reason`` is one of `assistbot.episode.judge.END_REASONS` (``object fell: bottle``
 names the object) and ``end_detail`` what it concerns (the repeated action, say);
 ``touched_person`` whether any robot geom overlapped any of the person's, ``touch_depth``
@@ -32,7 +34,8 @@ from assistbot.errors import UserError
 
 HEAD = ["job_id", "scenario"]
 TAIL = ["seed", "perception", "time_limit", "success", "time_to_drink", "end_reason", "end_detail", "decisions",
-        "n_decisions", "n_failed_actions", "errors_communicated", "spilled_fraction", "min_distance_human",
+        "n_decisions", "n_failed_actions", "errors_communicated", "answered_cues", "ignored_cues", "uncued_decisions",
+        "spilled_fraction", "min_distance_human",
         "touched_person", "touch_depth", "touch_force", "sim_time", "wall_seconds", "cpu_seconds", "scenario_sha"]
 FIXED = HEAD + TAIL
 #: columns that depend on the machine, not on the episode
@@ -40,6 +43,7 @@ VOLATILE = ("wall_seconds", "cpu_seconds")
 ERROR_COLUMNS = ["job_id", "scenario", "params", "seed", "error", "traceback", "wall_seconds", "when"]
 _TYPES = {"seed": "int64", "time_limit": "float64", "success": "bool_", "time_to_drink": "float64",
           "n_decisions": "int64", "n_failed_actions": "int64", "errors_communicated": "int64",
+          "answered_cues": "int64", "ignored_cues": "int64", "uncued_decisions": "int64",
           "spilled_fraction": "float64", "min_distance_human": "float64", "touched_person": "bool_",
           "touch_depth": "float64", "touch_force": "float64", "sim_time": "float64", "wall_seconds": "float64",
           "cpu_seconds": "float64"}
@@ -128,6 +132,10 @@ class ResultStore:
             header, rows = read_rows(self.csv_path)
             if header and header != self.columns:
                 theirs, ours = param_columns(header), param_columns(self.columns)
+                if theirs == ours:
+                    raise UserError(str(self.csv_path), "columns",
+                                    "this folder was written by another version of assistbot (its results have other "
+                                    "columns); use another --out")
                 raise UserError(str(self.csv_path), "columns",
                                 f"this folder holds a sweep over {', '.join(theirs) or 'no parameters'}, this one sweeps "
                                 f"{', '.join(ours) or 'no parameters'}; use another --out (or the same parameters)")

@@ -59,6 +59,8 @@ class Cell:
     decisions_mean: float = math.nan  # AEL decisions per episode
     min_distance: float = math.nan  # closest the robot came to the human's head/torso over these episodes, m
     failed_mean: float = math.nan  # robot actions that failed per episode (a decision the world did not bear out)
+    ignored_share: float = math.nan  # of the decisions taken with a cue of the person's showing, those that ignored it
+    uncued_mean: float = math.nan  # decisions per episode taken with no cue showing (the seed's fallback)
 
     @classmethod
     def of(cls, rows: Sequence[dict]) -> "Cell":
@@ -71,9 +73,15 @@ class Cell:
         dec = [float(r["n_decisions"]) for r in rows if r.get("n_decisions") is not None]
         dist = [float(r["min_distance_human"]) for r in rows if r.get("min_distance_human") is not None]
         failed = [float(r["n_failed_actions"]) for r in rows if r.get("n_failed_actions") is not None]
+        cued = [r for r in rows if r.get("ignored_cues") is not None and r.get("answered_cues") is not None]
+        ignored = sum(float(r["ignored_cues"]) for r in cued)
+        with_cue = ignored + sum(float(r["answered_cues"]) for r in cued)
+        uncued = [float(r["uncued_decisions"]) for r in rows if r.get("uncued_decisions") is not None]
         return cls(n=n, successes=s, rate=s / n if n else math.nan, rate_low=lo, rate_high=hi,
                    ttd_mean=ttd[0], ttd_low=ttd[1], ttd_high=ttd[2],
                    errors_mean=sum(errs) / len(errs) if errs else math.nan,
                    spilled_mean=sum(spill) / len(spill) if spill else math.nan,
                    decisions_mean=sum(dec) / len(dec) if dec else math.nan, min_distance=min(dist) if dist else math.nan,
-                   failed_mean=sum(failed) / len(failed) if failed else math.nan)
+                   failed_mean=sum(failed) / len(failed) if failed else math.nan,
+                   ignored_share=ignored / with_cue if with_cue else math.nan,
+                   uncued_mean=sum(uncued) / len(uncued) if uncued else math.nan)
