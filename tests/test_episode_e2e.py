@@ -78,7 +78,7 @@ def check_fig5(r) -> None:
     assert starts and all(e["t"] > first_said for e in starts)
     # the seed's fallback: the passive person shows nothing, so the robot's first step is taken without a cue;
     # the glass she then holds out when asked is answered by receiving it (episode.cues)
-    cued = r.cues["decisions"]
+    cued = r.measures["cues"]["decisions"]
     assert [d["action"] for d in cued] == decisions and cued[0]["kind"] == "without cue", cued
     assert all(d["kind"] == "answered" for d in cued if d["action"] == "Receive-object"), cued
     events = [e["event"] for e in r.world_events]

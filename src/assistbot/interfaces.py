@@ -2,7 +2,8 @@
 
     world --Perception--> Percept --Agent--> Decision --Actor--> motion
                                       |utterances--> Partner (hears) --> the person's arm
-    the Task watches from outside: world events, the success test, the failure kinds, the end.
+    the Task watches from outside: world events, the success test, the failure kinds, the end;
+    Measures watch the agent: the percepts it is given, the decisions it takes.
 
 In the spirit of dm_control's physics / task / environment split: the loop imports none of the concrete
 parts; a builder (`assistbot.episode.builder`) makes them from a scenario. The DNF architecture is one
@@ -185,3 +186,16 @@ class Task(Protocol):
         """The task's measures for the summary: ``time_to_drink`` (s or None), ``spilled_fraction``,
         ``min_distance_human`` (m), ``touched_person`` and ``end_detail`` (dicts)."""
         ...
+
+
+class Measure(Protocol):
+    """Watches the agent without acting on the episode: every percept it is given and every decision it takes;
+    its ``summary()`` goes into the episode's summary under ``name`` (`assistbot.episode.cues.CueLedger`)."""
+
+    name: str
+
+    def see(self, percept: "Percept") -> None: ...
+
+    def decided(self, t: float, action: str) -> None: ...
+
+    def summary(self) -> dict[str, Any]: ...

@@ -74,6 +74,7 @@ def build_episode(scenario: Scenario, perception: str = "vision", seed: int | No
     """The episode of ``scenario``: ``perception`` "vision" (the robot's cameras) or "oracle" (labelled
     ground truth); ``seed`` and ``overrides`` (dotted paths) on top of the scenario's own. ``record_truth``:
     the log also keeps the oracle's percept beside vision's, for the experimenter (the agent never sees it)."""
+    from assistbot.episode.cues import CueLedger
     from assistbot.episode.executor import RobotExecutor
     from assistbot.human.controller import HumanController
     from assistbot.human.script import HumanConfig
@@ -111,4 +112,4 @@ def build_episode(scenario: Scenario, perception: str = "vision", seed: int | No
 
         truth = OraclePerception(world, partner.appearance)
     return Episode(scenario, seed, world, seeing, agent, actor, partner, DrinkingTask(world, scenario.time_limit),
-                   overrides=overrides, frame_every=frame_every, truth=truth)
+                   overrides=overrides, frame_every=frame_every, truth=truth, measures=(CueLedger(),))

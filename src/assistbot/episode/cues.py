@@ -51,8 +51,10 @@ def answers(action: str, intentions: frozenset[str] | set[str]) -> bool:
 
 @dataclass
 class CueLedger:
-    """Feed every percept the agent saw (`see`) and every new decision (`decided`); `counts` at the end."""
+    """Feed every percept the agent saw (`see`) and every new decision (`decided`); `counts` at the end.
+    A `assistbot.interfaces.Measure`: in an episode's summary under ``cues``."""
 
+    name: str = "cues"
     window: float = CUE_WINDOW
     share: float = CUE_SHARE
     _seen: deque = field(default_factory=deque)            # (t, cue items shown then)
@@ -72,13 +74,15 @@ class CueLedger:
         every = sorted(set().union(*frames))
         return [c for c in every if sum(c in f for f in frames) >= self.share * len(frames)]
 
-    def decided(self, t: float, action: str) -> str:
-        """Classify the decision of ``action`` at ``t``: "answered", "ignored" or "without cue"."""
+    def decided(self, t: float, action: str) -> None:
+        """Record the decision of ``action`` at ``t`` as "answered", "ignored" or "without cue"."""
         cues = self.cues_at(t)
         intentions = set().union(*(intentions_of(c) for c in cues)) if cues else set()
         kind = ("without cue" if not cues else "answered" if answers(action, intentions) else "ignored")
         self.decisions.append({"t": round(t, 3), "action": action, "cues": cues, "kind": kind})
-        return kind
+
+    def summary(self) -> dict:
+        return {**self.counts(), "decisions": list(self.decisions)}
 
     def counts(self) -> dict[str, int]:
         kinds = [d["kind"] for d in self.decisions]

@@ -17,8 +17,7 @@ from dataclasses import dataclass, field
 from typing import Any, Callable
 
 from assistbot.cognition.percept import Decision, Percept
-from assistbot.episode.cues import CueLedger
-from assistbot.interfaces import CONTROL_DT, Actor, Agent, Partner, Perception, Status, Task
+from assistbot.interfaces import CONTROL_DT, Actor, Agent, Measure, Partner, Perception, Status, Task
 from assistbot.speech import SpeechLog
 
 PERCEPTION_EVERY = 5  # control ticks: 10 Hz
@@ -46,7 +45,7 @@ class EpisodeResult:
     overrides: dict[str, Any] = field(default_factory=dict)
     touched_person: dict = field(default_factory=dict)
     end_detail: dict = field(default_factory=dict)
-    cues: dict = field(default_factory=dict)
+    measures: dict = field(default_factory=dict)   # each `Measure`'s summary, by its name
 
     def summary(self) -> dict:
         return {
@@ -62,7 +61,7 @@ class EpisodeResult:
             "min_distance_human": round(self.min_distance_human, 4),
             "touched_person": self.touched_person,
             "errors_communicated": self.errors_communicated,
-            "cues": self.cues,
+            **self.measures,
             "wall_seconds": {k: round(v, 3) for k, v in self.wall.items()},
             "overrides": self.overrides,
         }
@@ -92,13 +91,14 @@ class Episode:
 
     def __init__(self, scenario, seed: int, world, perception: Perception, agent: Agent, actor: Actor,
                  partner: Partner, task: Task, overrides: dict[str, Any] | None = None,
-                 frame_every: float | None = None, truth: Perception | None = None) -> None:
+                 frame_every: float | None = None, truth: Perception | None = None,
+                 measures: tuple[Measure, ...] = ()) -> None:
         self.scenario, self.seed, self.overrides = scenario, seed, dict(overrides or {})
+        self.measures = measures   # watch the agent for the summary (the cue ledger, say); never act
         self.world, self.perception, self.agent, self.actor, self.partner, self.task = (
             world, perception, agent, actor, partner, task)
         self.truth = truth       # ground truth for the log only (--record-truth): never reaches the agent
         self.speech = SpeechLog()
-        self.cues = CueLedger()   # each decision against the cues the agent was shown (episode.cues)
         self.log: list[dict] = []
         self.frame_every = frame_every
         self.on_frame: Callable[["Episode"], None] | None = None
@@ -158,7 +158,8 @@ class Episode:
         percept = self.perception.perceive(t, self.actor.proprioception())
         c1 = time.perf_counter()
         self.actor.see(percept)
-        self.cues.see(percept)
+        for m in self.measures:
+            m.see(percept)
         decision = self.agent.update(percept)
         ended = self.actor.ended()   # the agent has seen the end in this percept's proprioception
         if ended is not None:
@@ -187,7 +188,8 @@ class Episode:
             said = [u.text for u in decision.utterances if u.layer == "AEL"]
             self.actor.begin(decision.action, t, said[0] if said else "")
             self.task.decided(t, decision.action)
-            self.cues.decided(t, decision.action)
+            for m in self.measures:
+                m.decided(t, decision.action)
             self.log.append({"t": round(t, 3), "kind": "decide", "action": decision.action, "target": decision.target})
 
     def _video_frame(self, t: float) -> None:
@@ -246,7 +248,7 @@ class Episode:
             actions=[{"action": r.action, "start": round(r.start, 3), "end": None if r.end is None else round(r.end, 3),
                       "status": r.status.value, "reason": r.reason} for r in self.actor.records],
             errors_communicated=sum(1 for _, a in decisions if a == "Communicate-Error"),
-            cues={**self.cues.counts(), "decisions": list(self.cues.decisions)},
+            measures={m.name: m.summary() for m in self.measures},
             wall=dict(self.wall),
             overrides=self.overrides,
             **self.task.outcome(),

@@ -59,6 +59,7 @@ def run_job(job: Job) -> dict[str, Any]:
         # (benchmarks/soak.py) instead of creeping up through fragmentation.
         gc.collect()
     decisions = s["decisions"]
+    cues = s.get("cues")   # the cue ledger's counts (`assistbot.episode.cues`), where the episode kept one
     row.update(
         status="ok",
         success=bool(s["success"]),
@@ -69,9 +70,9 @@ def run_job(job: Job) -> dict[str, Any]:
         n_decisions=len(decisions),
         n_failed_actions=sum(1 for a in s["actions"] if a["status"] == "failed"),
         errors_communicated=int(s["errors_communicated"]),
-        answered_cues=int(s["cues"]["answered"]),
-        ignored_cues=int(s["cues"]["ignored"]),
-        uncued_decisions=int(s["cues"]["without_cue"]),
+        answered_cues=None if cues is None else int(cues["answered"]),
+        ignored_cues=None if cues is None else int(cues["ignored"]),
+        uncued_decisions=None if cues is None else int(cues["without_cue"]),
         spilled_fraction=float(s["spilled_fraction"]),
         min_distance_human=float(s["min_distance_human"]),
         touched_person=bool(s["touched_person"]["touched"]),
