@@ -17,6 +17,7 @@ import ctypes
 import ctypes.util
 import os
 import queue
+import signal
 import threading
 import time
 import weakref
@@ -83,7 +84,13 @@ def _context(width: int, height: int):
             from mujoco.glfw import GLContext
         else:
             raise UserError("MUJOCO_GL", backend, "unknown GL backend; use egl, osmesa or glfw")
-        return GLContext(width, height)
+        # made whole or not at all: a Ctrl-C in the middle of the constructor leaves a half-made context whose
+        # finaliser prints a traceback as the interrupted run exits; held back, the interrupt comes just after
+        old = signal.pthread_sigmask(signal.SIG_BLOCK, {signal.SIGINT})
+        try:
+            return GLContext(width, height)
+        finally:
+            signal.pthread_sigmask(signal.SIG_SETMASK, old)
     except UserError:
         raise
     except Exception as exc:  # noqa: BLE001 - any failure here means no usable GL
