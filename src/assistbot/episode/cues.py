@@ -24,13 +24,13 @@ from dataclasses import dataclass, field
 
 from assistbot.cognition.architecture import ol_items_of
 from assistbot.cognition.percept import Percept
-from assistbot.task import ASL_CHAINS, INTENTIONS, ROBOT_ACTION_BY_NAME
+from assistbot.task import ASL_CHAINS, INTENTIONS, ROBOT_ACTION_BY_NAME, ROBOT_ACTIONS
 
 #: s of percepts before a decision in which a cue must show, and the share of them it must show in
 CUE_WINDOW = 1.0
 CUE_SHARE = 0.5
-#: the action that names a mismatch of the person's: an answer to whatever cue showed it
-NAMING_THE_MISMATCH = "Communicate-Error"
+#: the actions the task weighs up for a mismatch of the person's (naming it): an answer to whatever cue showed it
+NAMING_THE_MISMATCH = frozenset(a.name for a in ROBOT_ACTIONS if any(w > 0 for w in a.errors.values()))
 
 _CHAINS = {c.name: c for c in ASL_CHAINS}
 
@@ -43,7 +43,7 @@ def intentions_of(item: str) -> frozenset[str]:
 
 def answers(action: str, intentions: frozenset[str] | set[str]) -> bool:
     """Does the task weigh ``action`` as a complement of one of ``intentions`` (or is it naming a mismatch)?"""
-    if action == NAMING_THE_MISMATCH:
+    if action in NAMING_THE_MISMATCH:
         return True
     weights = ROBOT_ACTION_BY_NAME[action].intentions
     return any(weights.get(i, 0.0) > 0 for i in intentions)

@@ -323,7 +323,7 @@ def put_down(c, object: str | None = None, at: tuple[float, float] | None = None
     base = _center_base(c, held)
     hand, R = c.arm.hand_pose()
     a = _axis(c, held)
-    straighten = _turning(a, np.array([0.0, 0.0, 1.0 if a[2] >= 0.0 else -1.0]))
+    upright = _turning(a, np.array([0.0, 0.0, 1.0 if a[2] >= 0.0 else -1.0]))
     if at is not None:
         spot = np.array(at, float)
     elif base[0] > OWN_SIDE_X and held in catalogue.TASK_OBJECTS:
@@ -333,9 +333,9 @@ def put_down(c, object: str | None = None, at: tuple[float, float] | None = None
     target_base = np.array([spot[0], spot[1], layout.TABLE_Z + 0.004])
     # straightened, the fingers turned about the vertical toward the spot's bearing from the shoulder (as the
     # arm reaches there; the object stays upright), if the arm can turn the hand so; else as held
-    Rs = straighten @ R
+    Ru = upright @ R
     bearing = np.arctan2(*(spot - SHOULDER_XY)[::-1])
-    straighten = rot_z(bearing - np.arctan2(-Rs[1, 2], -Rs[0, 2])) @ straighten
+    straighten = rot_z(bearing - np.arctan2(-Ru[1, 2], -Ru[0, 2])) @ upright
     for turn in (straighten, np.eye(3)):
         offset = turn @ (hand - base)          # the hand relative to the object's base
         if (yield from _move(c, target_base + offset + np.array([0, 0, 0.04]), turn @ R)):
