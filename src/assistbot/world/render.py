@@ -17,7 +17,6 @@ import ctypes
 import ctypes.util
 import os
 import queue
-import signal
 import threading
 import time
 import weakref
@@ -84,19 +83,26 @@ def _context(width: int, height: int):
             from mujoco.glfw import GLContext
         else:
             raise UserError("MUJOCO_GL", backend, "unknown GL backend; use egl, osmesa or glfw")
-        # made whole or not at all: a Ctrl-C in the middle of the constructor leaves a half-made context whose
-        # finaliser prints a traceback as the interrupted run exits; held back, the interrupt comes just after
-        old = signal.pthread_sigmask(signal.SIG_BLOCK, {signal.SIGINT})
-        try:
-            return GLContext(width, height)
-        finally:
-            signal.pthread_sigmask(signal.SIG_SETMASK, old)
+        return _finalised_safely(GLContext)(width, height)
     except UserError:
         raise
     except Exception as exc:  # noqa: BLE001 - any failure here means no usable GL
         raise UserError("rendering", f"MUJOCO_GL={backend}",
                         f"cannot create an offscreen GL context ({type(exc).__name__}: {exc}); "
                         "install libosmesa6 or libegl-mesa0 (make debs), or set MUJOCO_GL to a working backend") from None
+
+
+def _finalised_safely(cls: type) -> type:
+    """``cls`` whose finaliser does nothing when its constructor was cut short.  A Ctrl-C in the main thread,
+    or the interpreter exiting under the daemon render thread, can stop mujoco's GLContext constructor before
+    it sets ``_context``; its own ``__del__`` then prints an AttributeError traceback as the run exits."""
+
+    class Context(cls):  # type: ignore[valid-type, misc]
+        def __del__(self) -> None:
+            if getattr(self, "_context", None) is not None:
+                super().__del__()
+
+    return Context
 
 
 class Renderer:
@@ -222,6 +228,10 @@ class RenderThread:
             raise ready
         self.renderer: Renderer = ready
         RenderThread._live.add(self)
+        # exit handlers run last-registered first: after the first context, mujoco's EGL registers the display's
+        # termination, and a context freed after it raises; closing the threads comes first again
+        atexit.unregister(_close_render_threads)
+        atexit.register(_close_render_threads)
 
     def _run(self, model: mujoco.MjModel, width: int, height: int) -> None:
         try:
