@@ -55,7 +55,7 @@ class Gripper:
         self._spread = model.actuator(SPREAD_ACTUATOR).id
         self._qadr = np.array([model.jnt_qposadr[model.joint(j).id] for j in FINGER_JOINTS])
         self._touch = {part: np.array([int(model.sensor(n).adr[0]) for n in names]) for part, names in TOUCH_SENSORS.items()}
-        self.command = OPEN
+        self.command: float | np.ndarray = OPEN   # one angle for all fingers, or one each while easing open
         ws = model.sensor("robot_wrist_force")
         self._wrist = slice(int(ws.adr[0]), int(ws.adr[0]) + 3)
         self.reach_above, self.reach_below = hand_extent(model)
@@ -63,6 +63,22 @@ class Gripper:
     def open(self, amount: float = 1.0) -> None:
         """Open the fingers (amount 1: fully; 0.5: half way to closed)."""
         self.command = OPEN + (1.0 - amount) * (CLOSED - OPEN)
+        self.data.ctrl[self._act] = self.command
+
+    def ease_open(self, amount: float, start: np.ndarray) -> None:
+        """Let go gently: each finger's command ``amount`` (0..1) of the way from ``start`` (its angles when
+        letting go began) to fully open.  At 0 the fingers hold where they are and stop squeezing."""
+        self.command = np.asarray(start, float) + float(amount) * (OPEN - np.asarray(start, float))
+        self.data.ctrl[self._act] = self.command
+
+    def idle_fingers(self) -> np.ndarray:
+        """Which fingers closed onto the palm past what they hold: they touch nothing of it."""
+        return self.finger_angles() > EMPTY_CLOSED
+
+    def open_idle_fingers(self) -> None:
+        """Open the fingers that hold nothing while the others keep squeezing: a finger curled past a
+        held object may lie under it, where it tilts the object set down and kicks it when it opens."""
+        self.command = np.where(self.idle_fingers(), OPEN, CLOSED)
         self.data.ctrl[self._act] = self.command
 
     def close(self) -> None:
@@ -99,4 +115,4 @@ class Gripper:
 
     def fully_closed(self) -> bool:
         """True when the fingers closed on nothing (all curled onto the palm)."""
-        return bool(np.all(self.finger_angles() > EMPTY_CLOSED))
+        return bool(np.all(self.idle_fingers()))

@@ -8,6 +8,11 @@ from assistbot.robot.phases.base import Phase
 
 #: finger angle (rad) below which the hand counts as open after a release
 OPENED = 0.1
+#: s a release first holds the fingers where they are, so the squeeze drops before anything moves, then
+#: s over which it opens them: fingers snapping open from a firm grip kick what they let go of (a glass held
+#: a little tilted, or with a finger curled beside it, falls over)
+RELAX_S = 0.25
+EASE_S = 0.5
 
 class Grip(Phase):
     """Close the hand until it holds ``prim.object`` (from contacts), or open it (release)."""
@@ -18,12 +23,16 @@ class Grip(Phase):
 
     def start(self, prim):
         g = prim.robot.gripper
-        g.close() if self.close else g.open()
-        if not self.close and prim.carrying:
-            prim.note_set_down()
-        if not self.close:
-            prim.carrying = False
         self.since: float | None = None
+        if self.close:
+            g.close()
+            return
+        if prim.carrying:
+            prim.note_set_down()
+        prim.carrying = False
+        self._from = g.finger_angles()
+        # a hand already open has nothing to let go of gently
+        self._relax, self._ease = (RELAX_S, EASE_S) if float(self._from.max()) >= OPENED else (0.0, 0.0)
 
     def tick(self, prim, dt, t):
         prim.robot.hold()
@@ -45,8 +54,11 @@ class Grip(Phase):
                 return (Status.FAILED,
                         f"{self.name}: no grasp of {prim.object} after {self.timeout:.1f} s (pressing: {pressing or 'nothing'})")
             return Status.RUNNING, ""
-        # let go: wait until the fingers are open (the hand then backs off without dragging the object)
-        if t >= self.settle and (float(g.finger_angles().max()) < OPENED or t >= self.timeout):
+        # let go: stop squeezing, open gently, wait until the fingers are open (the hand then backs off
+        # without dragging the object)
+        eased = t >= self._relax + self._ease
+        g.ease_open(1.0 if eased else max(0.0, (t - self._relax) / self._ease), self._from)
+        if eased and t >= self.settle and (float(g.finger_angles().max()) < OPENED or t >= self._relax + self._ease + self.timeout):
             return Status.SUCCEEDED, ""
         return Status.RUNNING, ""
 
@@ -56,3 +68,21 @@ class Open(Grip):
 
     def __init__(self, name="open"):
         super().__init__(False, name, settle=0.2)
+
+
+class FreeIdleFingers(Phase):
+    """Before setting down what the hand carries, open the fingers that closed past it onto the palm (the
+    others keep their grip): such a finger may be curled under the object."""
+
+    name = "free idle fingers"
+    SECONDS = 0.4
+
+    def start(self, prim):
+        g = prim.robot.gripper
+        self.idle = not (prim.carrying and bool(g.idle_fingers().any()))
+        if not self.idle:
+            g.open_idle_fingers()
+
+    def tick(self, prim, dt, t):
+        prim.robot.hold()
+        return (Status.SUCCEEDED if t >= self.SECONDS else Status.RUNNING), ""

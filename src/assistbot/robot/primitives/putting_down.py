@@ -6,7 +6,7 @@ from typing import TYPE_CHECKING, Callable
 
 import numpy as np
 
-from assistbot.robot.phases import BackOff, LowerUntilSupported, Move, Open, Phase, SetCarrying
+from assistbot.robot.phases import BackOff, FreeIdleFingers, LowerUntilSupported, Move, Open, Phase, SetCarrying
 from assistbot.robot.primitives.carry_over import CarryOver
 from assistbot.robot.primitives.geometry import GRASP_HEIGHT, LIFT, grasp_pose_at, half_turn
 from assistbot.robot.primitives.places import free_rws_spot
@@ -31,6 +31,7 @@ def put_down_at(xy_of: Callable[[Primitive], np.ndarray], lift: float = LIFT) ->
         c = np.array([x, y, TABLE_Z + GRASP_HEIGHT[p.object] + up])
         return grasp_pose_at(p, c, p.object, roll=half_turn(p))
     return [
+        FreeIdleFingers(),
         CarryOver(lambda p: at(p, lift)),
         Move("carry", lambda p: at(p, lift), duration=1.8),
         # down to just above where the object would touch if held as assumed; the rest by feel
