@@ -1,5 +1,5 @@
-"""Putting an object down in the physics: by feel when it hangs lower in the hand than assumed, and over
-what stands in the way.
+"""Putting an object down in the physics: by feel when it hangs lower in the hand than assumed, over what
+stands in the way, and letting go of it without kicking it.
 
 Targets come from ground truth here (a stand-in for perception), as in test_robot_primitives.
 """
@@ -11,8 +11,11 @@ import pytest
 
 from assistbot.robot import primitives as P
 from assistbot.robot.controller import RobotController
+from assistbot.robot.gripper import EMPTY_CLOSED
+from assistbot.robot.phases import OPENED, Open
+from assistbot.robot.phases.grip import RELAX_S
 from assistbot.robot.primitives import Status
-from assistbot.robot.sim import body_xy, run
+from assistbot.robot.sim import CONTROL_DT, body_lift, body_xy, run
 from assistbot.world import Arrangement, build_world
 from assistbot.world.layout import TABLE_Z
 
@@ -78,3 +81,67 @@ def test_what_the_hand_carries_passes_over_an_object_standing_in_the_way():
     assert np.linalg.norm(np.array(bottle()) - b0) < 0.01
     g = w.data.xpos[w.body_id["glass"]]
     assert np.hypot(g[0] - 0.20, g[1] - 0.14) < 0.03 and w.data.xmat[w.body_id["glass"]][8] > 0.98
+
+
+class _GraspAndLetGo(P.Primitive):
+    name = "grasp and let go"
+
+    def phases(self):
+        return P.reach_and_grasp_phases(self) + [Open("release")]
+
+
+def test_letting_go_stops_the_squeeze_before_the_fingers_move():
+    """Fingers that snap open from a firm grip kick what they let go of; the hand first relaxes in place."""
+    w = build_world(Arrangement.from_options("HWS:closed", "RWS:empty@0.20,-0.12"), seed=0)
+    robot = RobotController(w.model, w.data)
+    prim = _GraspAndLetGo(robot, "glass")
+    log: list[tuple[float, float, np.ndarray]] = []
+
+    def watch(t):
+        if prim.progress.phase == "release":
+            log.append((t, sum(robot.gripper.pressure().values()), robot.gripper.finger_angles()))
+
+    pr, _ = run(w, prim, body_xy(w, "glass"), each_tick=watch)
+    assert pr.status is Status.SUCCEEDED, pr.reason
+    t0, squeeze0, angles0 = log[0]
+    assert squeeze0 > 5.0                                  # it was holding firmly
+    relaxed = [(sq, a) for t, sq, a in log if t - t0 <= RELAX_S]
+    assert relaxed[-1][0] < 0.3 * squeeze0, (squeeze0, relaxed[-1][0])           # the squeeze has dropped...
+    assert max(np.abs(a - angles0).max() for _, a in relaxed) < 0.05, relaxed[-1][1] - angles0   # ...the fingers barely moved
+    assert max(robot.gripper.finger_angles()) < OPENED and not robot.gripper.grasps()
+    assert w.data.xmat[w.body_id["glass"]][8] > 0.99
+
+
+def test_a_finger_curled_past_what_the_hand_took_is_opened_before_setting_it_down():
+    """The glass taken from the person's hand lower than the robot meant to (its height seen 3 cm high): a
+    finger closes past it onto the palm, where it can lie under the glass; it is opened, the others
+    holding, before the glass is set down, and the glass ends upright in the RWS."""
+    from test_handover_region import SETUPS, _person, _settle
+
+    w = build_world(Arrangement.from_options(*SETUPS["glass"]), seed=0)
+    robot = RobotController(w.model, w.data)
+    human = _person(w, (0.0, 0.0, 0.0))
+    robot.ik.set_obstacles({"bottle": tuple(w.data.xpos[w.body_id["bottle"]][:2])})
+    human.start("hand_to_robot", object="glass", grip="ag")
+    while not (w.human_holding() == "glass" and human.arm.arrived(w.time, 0.03)) and w.time < 12.0:
+        _settle(w, human, CONTROL_DT)
+    lift = body_lift(w, "glass")
+    prim = P.Receive(robot, "glass", human_holds=lambda: w.human_holding() is not None, lifted=lambda: lift() + 0.03,
+                     locate=lambda name: body_xy(w, name)())
+    at: dict[str, tuple[np.ndarray, bool]] = {}
+
+    def watch(t):
+        human.tick(t)
+        phase = prim.progress.phase
+        if phase in ("take back", "carry") and phase not in at:
+            at[phase] = (robot.gripper.finger_angles(), robot.gripper.grasps())
+
+    pr, _ = run(w, prim, body_xy(w, "glass"), seconds=60.0, each_tick=watch)
+    assert pr.status is Status.SUCCEEDED, pr.reason
+    curled, _ = at["take back"]
+    assert curled.max() > EMPTY_CLOSED, curled                 # the situation: a finger closed past the glass
+    carried, holds = at["carry"]
+    assert carried.max() < EMPTY_CLOSED and holds, carried     # opened, and the others still hold it
+    _settle(w, human, 1.0)
+    st = w.state()
+    assert st.robot_holds is None and st.objects["glass"].upright and st.objects["glass"].zone == "RWS", st.summary()
