@@ -82,3 +82,18 @@ def test_a_hand_that_has_just_poured_is_not_offering(executor):
     # held still long after the pour: that is holding out
     _frames(executor, [_hand("grasp_ag", -0.13, -0.13)] * 10, t0=14.0)
     assert executor._offered()
+
+
+def _holding(obj):
+    return HandPercept("grasp_ag", (-0.1, 0.1, 0.2), object_in_hand=obj, held_out=obj is not None)
+
+
+def test_a_hand_seen_holding_another_object_is_not_free_to_take_one(executor):
+    _frames(executor, [_holding("glass")] * 10)
+    assert executor._hand_busy("bottle")          # it holds the glass: it cannot take the bottle
+    assert not executor._hand_busy("glass")       # the glass itself: already taken, or being taken
+
+
+def test_a_single_misread_frame_does_not_make_the_hand_busy(executor):
+    _frames(executor, [_holding(None)] * 7 + [_holding("glass")] + [_holding(None)] * 2)
+    assert not executor._hand_busy("bottle")

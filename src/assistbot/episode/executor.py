@@ -165,6 +165,13 @@ class RobotExecutor:
         still = 2 * int(near.sum()) > len(frames)
         return still or 2 * sum(h.held_out for h in frames) >= len(frames)
 
+    def _hand_busy(self, obj: str | None) -> bool:
+        """Most of the frames of the last OFFER_WINDOW that show the person's hand show it holding an object
+        other than ``obj`` (one frame's misreading does not count)."""
+        frames = [h for _, h in self._hand_seen]
+        other = sum(h.object_in_hand is not None and h.object_in_hand != obj for h in frames)
+        return bool(frames) and 2 * other > len(frames)
+
     def _seen_elsewhere(self) -> bool:
         """What the hand believes it holds has been seen away from the hand (vision places an object in
         the robot's hand at the hand unless it sees it elsewhere) for AWAY_SECONDS."""
@@ -237,7 +244,8 @@ class RobotExecutor:
                              locate=self._locate, stopper_removed=self._stopper_removed,
                              lifted=lambda: self._lifted(aim), partner_hand=self._partner_hand,
                              identify=lambda: self._held_out_name, seen_elsewhere=self._seen_elsewhere,
-                             offered=self._offered, seen_state=self._seen_state)
+                             offered=self._offered, hand_busy=lambda: self._hand_busy(self.primitive.object),
+                             seen_state=self._seen_state)
         # hidden right now (often behind the robot's own arm): start from where it was last seen;
         # the gaze goes there and the target field takes over once the cameras see it again
         self.primitive.start(self._locate(aim))
@@ -271,9 +279,12 @@ class RobotExecutor:
                     self._standing.pop(name, None)
 
     def _obstacles(self) -> dict[str, tuple[float, float] | None]:
-        """The objects the arm keeps clear of: those standing on the table, but for the one it acts on."""
-        acted_on = self.primitive.object if self.primitive is not None else None
-        return {name: xy for name, xy in self._standing.items() if name != acted_on and name != self.holding()}
+        """The objects the arm keeps clear of: those standing on the table, but for the one it acts on until
+        it has set that one down and backed off it (withdrawing, the arm must not sweep it over)."""
+        p = self.primitive
+        acted_on, set_down = (p.object, p.set_down) if p is not None else (None, None)
+        return {name: xy for name, xy in self._standing.items()
+                if (name != acted_on or name == set_down) and name != self.holding()}
 
     def tick(self, t: float, dt: float) -> None:
         """One control tick: advance the primitive (or the speech act) and note how it ended."""

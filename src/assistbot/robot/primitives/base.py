@@ -16,7 +16,7 @@ import numpy as np
 from assistbot.interfaces import Status
 from assistbot.robot import poses
 from assistbot.robot.controller import RobotController
-from assistbot.robot.phases import Grip, Phase
+from assistbot.robot.phases import BackOff, Grip, Phase
 from assistbot.robot.primitives.geometry import GRASP_HEIGHT, RADIUS, TCP_CYLINDER_RADIUS
 from assistbot.robot.primitives.putting_down import set_down_what_is_carried
 from assistbot.robot.progress import Progress
@@ -51,6 +51,7 @@ class Primitive:
                  identify: Callable[[], str | None] | None = None,
                  seen_elsewhere: Callable[[], bool] | None = None,
                  offered: Callable[[], bool] | None = None,
+                 hand_busy: Callable[[], bool] | None = None,
                  seen_state: Callable[[str], str | None] | None = None) -> None:
         """``obj``: the object acted on ("bottle", "glass", "held_out" for whatever the human holds out).
 
@@ -69,6 +70,8 @@ class Primitive:
                              carries away from the hand: the grasp closed on something else.
           offered()          True while the person still holds the object out (not seen doing something
                              else with it, e.g. pouring); without perception: True.
+          hand_busy()        True while the person's hand is seen, steadily, holding something other than
+                             the object acted on: it is not free to take that; without perception: False.
           seen_state(name)   the state of object ``name`` ("inverted", "open", ...) as the cameras have
                              seen it steadily of late, or None (not seen, or read one way and another).
         """
@@ -83,10 +86,12 @@ class Primitive:
         self.identify = identify or (lambda: None)
         self.seen_elsewhere = seen_elsewhere or (lambda: False)
         self.offered = offered or (lambda: True)
+        self.hand_busy = hand_busy or (lambda: False)
         self.seen_state = seen_state or (lambda name: None)
         self._offer: np.ndarray | None = None
         self._failure: Progress | None = None    # a failure being ended safely (Phase.fallback)
         self.released: tuple[str, tuple[float, float]] | None = None  # the object let go of last, and where
+        self.set_down: str | None = None         # the object this primitive set on the table, once the hand backed off it
         self._lift: float | None = None          # the target's base height above the table, smoothed
         self._lift_frozen = False                # ... and kept once the object is in the hand
         self.carrying = False
@@ -145,6 +150,8 @@ class Primitive:
         self.robot.reset_command()
         self._held_xy = None
         self.carrying = False
+        self._let_go_of: str | None = None
+        self.set_down = None
         self._phases = self.phases()
         self._t, self._t_total = 0.0, 0.0
         self._failure = None
@@ -215,6 +222,8 @@ class Primitive:
         return ""
 
     def _after(self, phase: Phase) -> None:
+        if isinstance(phase, BackOff) and self._let_go_of is not None:
+            self.set_down = self._let_go_of
         if isinstance(phase, Grip):
             self.carrying = phase.close
             if phase.close:
@@ -230,3 +239,4 @@ class Primitive:
             return      # let go of in the air: into the person's hand
         c = pose.translation() + poses.approach_axis(pose.rotation()) * (RADIUS[obj] - TCP_CYLINDER_RADIUS)
         self.released = (obj, (float(c[0]), float(c[1])))
+        self._let_go_of = obj

@@ -5,7 +5,7 @@ from __future__ import annotations
 from assistbot.robot.phases import Move
 from assistbot.robot.primitives.base import Primitive
 from assistbot.robot.primitives.geometry import LIFT, side_grasp_pose
-from assistbot.robot.primitives.handing_over import give, hold_out
+from assistbot.robot.primitives.handing_over import give, hand_not_free, hold_out
 from assistbot.robot.primitives.reaching import reach_and_grasp_phases
 
 
@@ -25,3 +25,6 @@ class HandOver(Primitive):
             *hold_out(duration=3.0),
             *give(self.timeout),
         ]
+
+    def interrupted(self, phase) -> str:
+        return hand_not_free(self, phase)

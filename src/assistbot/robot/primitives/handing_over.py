@@ -25,6 +25,19 @@ if TYPE_CHECKING:
 OFFER_PHASE = "wait for the human to take it"
 
 
+#: the phases of a hand-over from carrying the object toward the person to holding it out for them
+TOWARD_THE_PERSON = ("carry over", "hold out", OFFER_PHASE)
+
+
+def hand_not_free(p: Primitive, phase: Phase) -> str:
+    """Why a hand-over to the person must not go on: on its way to them, or held out, the cameras see
+    their hand holding something else (held out to the robot, say), which cannot take it; going on
+    would carry the object into what they hold."""
+    if phase.name in TOWARD_THE_PERSON and p.carrying and p.hand_busy():
+        return "the person's hand is not free"
+    return ""
+
+
 def hold_out(base: float | None = None, xy=None, duration: float = 2.5) -> list[Phase]:
     """Hold the object in the hand out: at ``xy`` with its base ``base`` above the table, or where the
     person will take it (`offer_point`); over what stands in the way (`CarryOver`)."""

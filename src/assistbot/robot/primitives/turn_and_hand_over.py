@@ -8,7 +8,7 @@ from assistbot.robot.phases import Move
 from assistbot.robot.primitives.base import Primitive
 from assistbot.robot.primitives.carry_over import CarryOver
 from assistbot.robot.primitives.geometry import grasp_pose_at
-from assistbot.robot.primitives.handing_over import give
+from assistbot.robot.primitives.handing_over import give, hand_not_free
 from assistbot.robot.primitives.places import offer_point
 from assistbot.robot.primitives.reaching import reach_and_grasp_phases
 from assistbot.robot.primitives.turn_glass import seen_upright, turn_phases
@@ -24,7 +24,7 @@ class TurnAndHandOver(Primitive):
         self.timeout = timeout
 
     def interrupted(self, phase) -> str:
-        return seen_upright(self, phase)
+        return seen_upright(self, phase) or hand_not_free(self, phase)
 
     def phases(self):
         # after the roll the gripper is upside down: keep that roll while holding out
