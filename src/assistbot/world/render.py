@@ -15,6 +15,7 @@ from __future__ import annotations
 import atexit
 import ctypes
 import ctypes.util
+import functools
 import os
 import queue
 import threading
@@ -92,10 +93,12 @@ def _context(width: int, height: int):
                         "install libosmesa6 or libegl-mesa0 (make debs), or set MUJOCO_GL to a working backend") from None
 
 
+@functools.cache
 def _finalised_safely(cls: type) -> type:
     """``cls`` whose finaliser does nothing when its constructor was cut short.  A Ctrl-C in the main thread,
     or the interpreter exiting under the daemon render thread, can stop mujoco's GLContext constructor before
-    it sets ``_context``; its own ``__del__`` then prints an AttributeError traceback as the run exits."""
+    it sets ``_context``; its own ``__del__`` then prints an AttributeError traceback as the run exits.  Made once
+    per backend's class, not per context."""
 
     class Context(cls):  # type: ignore[valid-type, misc]
         def __del__(self) -> None:
