@@ -33,8 +33,10 @@ PERCEPTION ?= vision
 demo: $(STAMP)
 	$(BIN)/assistbot run paper-fig3-4 --perception $(PERCEPTION) --force || [ $$? -eq 1 ]
 
+# Each test file runs in one of $(TEST_WORKERS) worker processes (pytest-xdist); TEST_WORKERS=0 runs them in this one.
+TEST_WORKERS ?= auto
 test: $(STAMP)
-	$(BIN)/python -m pytest -m "not slow" -q
+	$(BIN)/python -m pytest -m "not slow" -q -n $(TEST_WORKERS) --dist loadfile
 
 # The linter (ruff, configured in pyproject.toml) and the type check (mypy on fields/, task/, cognition/).
 lint: $(STAMP)
