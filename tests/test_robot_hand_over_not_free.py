@@ -19,6 +19,8 @@ def _hand_over(hand_busy):
     seen: dict[str, object] = {"min_x": np.inf}
 
     def watch(t):
+        # the arm keeps clear of the object it set down once it has backed off it, as the executor has it
+        robot.ik.set_obstacles({prim.set_down: body_xy(w, prim.set_down)()} if prim.set_down else {})
         seen["min_x"] = min(seen["min_x"], float(robot.tcp_pose().translation()[0]))
         if prim.progress.phase == "release" and "set down at release" not in seen:
             seen["set down at release"] = prim.set_down
