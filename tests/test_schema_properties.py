@@ -78,6 +78,9 @@ def valid_scenarios(draw) -> dict:
             "human": {"profile": draw(st.sampled_from(list(PROFILES)))}}
     if draw(st.booleans()):
         data["human"]["speed"] = draw(st.floats(0.02, 1.0))
+    if draw(st.booleans()):
+        data["human"]["partner"] = draw(st.integers(0, 10**6) | st.fixed_dictionaries(
+            {}, optional={"seed": st.integers(0, 10**6), "upper_arm": st.floats(0.86, 1.12), "rom": st.floats(0.0, 0.3)}))
     overrides = draw(st.fixed_dictionaries({}, optional={"vision.dropout": st.floats(0.0, 0.9),
                                                          "human.hesitation": st.floats(0.0, 10.0),
                                                          "perturb.cue_delay": st.floats(0.0, 5.0)}))

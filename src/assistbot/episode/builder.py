@@ -77,6 +77,7 @@ def build_episode(scenario: Scenario, perception: str = "vision", seed: int | No
     from assistbot.episode.cues import CueLedger
     from assistbot.episode.executor import RobotExecutor
     from assistbot.human.controller import HumanController
+    from assistbot.human.population import Partner
     from assistbot.human.script import HumanConfig
     from assistbot.world import build_world
 
@@ -87,10 +88,10 @@ def build_episode(scenario: Scenario, perception: str = "vision", seed: int | No
     overrides = {**scenario.overrides, **(overrides or {})}
     parts = split_overrides(overrides, where, scenario.agent)
     make_agent = agent_factory(scenario.agent, where)
-    world = build_world(scenario.objects, seed=seed)
     hc: HumanConfig = scenario.human
     if parts.human:
         hc = HumanConfig(hc.profile, {**hc.overrides, **parts.human}, hc.script)
+    world = build_world(scenario.objects, seed=seed, body=hc.partner.body)
     partner = HumanController(world, config=hc, seed=seed, dt=CONTROL_DT)
     actor = RobotExecutor(world)
     agent = make_agent(seed, parts.cognition)
@@ -112,4 +113,5 @@ def build_episode(scenario: Scenario, perception: str = "vision", seed: int | No
 
         truth = OraclePerception(world, partner.appearance)
     return Episode(scenario, seed, world, seeing, agent, actor, partner, DrinkingTask(world, scenario.time_limit),
-                   overrides=overrides, frame_every=frame_every, truth=truth, measures=(CueLedger(),))
+                   overrides=overrides, frame_every=frame_every, truth=truth, measures=(CueLedger(),),
+                   person=hc.partner.to_dict() if hc.partner != Partner() else None)

@@ -46,6 +46,7 @@ class EpisodeResult:
     touched_person: dict = field(default_factory=dict)
     end_detail: dict = field(default_factory=dict)
     measures: dict = field(default_factory=dict)   # each `Measure`'s summary, by its name
+    person: dict = field(default_factory=dict)     # the partner's attributes (human.population; {}: the default person)
 
     def summary(self) -> dict:
         return {
@@ -64,6 +65,7 @@ class EpisodeResult:
             **self.measures,
             "wall_seconds": {k: round(v, 3) for k, v in self.wall.items()},
             "overrides": self.overrides,
+            "person": self.person,
         }
 
 
@@ -92,8 +94,9 @@ class Episode:
     def __init__(self, scenario, seed: int, world, perception: Perception, agent: Agent, actor: Actor,
                  partner: Partner, task: Task, overrides: dict[str, Any] | None = None,
                  frame_every: float | None = None, truth: Perception | None = None,
-                 measures: tuple[Measure, ...] = ()) -> None:
+                 measures: tuple[Measure, ...] = (), person: dict[str, Any] | None = None) -> None:
         self.scenario, self.seed, self.overrides = scenario, seed, dict(overrides or {})
+        self.person = dict(person or {})   # the partner population's attributes of this person ({}: the default one)
         self.measures = measures   # watch the agent for the summary (the cue ledger, say); never act
         self.world, self.perception, self.agent, self.actor, self.partner, self.task = (
             world, perception, agent, actor, partner, task)
@@ -251,5 +254,6 @@ class Episode:
             measures={m.name: m.summary() for m in self.measures},
             wall=dict(self.wall),
             overrides=self.overrides,
+            person=self.person,
             **self.task.outcome(),
         )

@@ -71,15 +71,22 @@ ORIENT = {
 }
 
 
-def _shoulder_xy() -> np.ndarray:
-    m = arm_model()
+def shoulder_and_reach(m: mujoco.MjModel) -> tuple[np.ndarray, float]:
+    """The right shoulder (world, m) of an arm model and its reach: the grasp site's distance from the
+    shoulder with the arm straight (its zero posture)."""
     d = mujoco.MjData(m)
     mujoco.mj_kinematics(m, d)
-    return d.xpos[m.body("human_r_upper_arm").id][:2].copy()
+    shoulder = d.xpos[m.body("human_r_upper_arm").id].copy()
+    return shoulder, float(np.linalg.norm(d.site_xpos[m.site("human_r_grasp").id] - shoulder))
 
 
-#: the right shoulder's table (x, y), read from the model
-SHOULDER_XY = _shoulder_xy()
+#: the default person's right shoulder and reach, read from the model: the points the behaviours name
+#: (where things are held out, where the hand rests) are this person's, and move with another's body
+DEFAULT_SHOULDER, DEFAULT_REACH = shoulder_and_reach(arm_model())
+#: the default person's shoulder (table x, y)
+SHOULDER_XY = DEFAULT_SHOULDER[:2].copy()
+#: the direction (world) in which a tremor moves the hand: mostly up and down, partly sideways
+TREMOR_DIRECTION = np.array([0.0, 0.6, 0.8])
 
 
 def rot_z(angle: float) -> np.ndarray:
@@ -87,9 +94,9 @@ def rot_z(angle: float) -> np.ndarray:
     return np.array([[c, -s, 0], [s, c, 0], [0, 0, 1]])
 
 
-def grip_orientation(kind: str, target) -> np.ndarray:
+def grip_orientation(kind: str, target, shoulder_xy=SHOULDER_XY) -> np.ndarray:
     """ORIENT[kind] turned about the vertical so the fingers point along the shoulder->target bearing."""
-    d = np.asarray(target, float)[:2] - SHOULDER_XY
+    d = np.asarray(target, float)[:2] - np.asarray(shoulder_xy, float)[:2]
     return rot_z(float(np.arctan2(d[1], d[0]))) @ ORIENT[kind]
 
 
@@ -155,16 +162,24 @@ class HumanArm:
     """Drives the human's right arm and hand in a `World` (see module docstring).
 
     speed: mean hand speed (m/s) of a reach; a reach of distance d lasts
-    max(MIN_DURATION, d / speed, rotation / ANGULAR_SPEED) seconds.
+    max(MIN_DURATION, d / speed, rotation / ANGULAR_SPEED) seconds. The arm is the world's person's
+    (``world.human_body``). A tremor (amplitude m, frequency Hz) moves the commanded hand along
+    TREMOR_DIRECTION all the time, at rest too.
     """
 
-    def __init__(self, world, speed: float = 0.2, dt: float = CONTROL_DT) -> None:
+    def __init__(self, world, speed: float = 0.2, dt: float = CONTROL_DT, tremor_amplitude: float = 0.0,
+                 tremor_frequency: float = 6.0) -> None:
         if speed <= 0:
             raise ValueError(f"speed must be > 0 m/s, got {speed}")
         self.world = world
         self.speed = float(speed)
         self.dt = float(dt)
-        self.m = arm_model()
+        self.m = arm_model(getattr(world, "human_body", None))
+        self.shoulder, self.reach = shoulder_and_reach(self.m)
+        self.shoulder_xy = self.shoulder[:2].copy()
+        self.tremor_amplitude = float(tremor_amplitude)
+        self.tremor_frequency = float(tremor_frequency)
+        self._tremor_dir = TREMOR_DIRECTION / np.linalg.norm(TREMOR_DIRECTION)
         self.d = mujoco.MjData(self.m)
         wm = world.model
         self._act = np.array([wm.actuator(j).id for j in HUMAN_ARM_JOINTS])
@@ -202,6 +217,18 @@ class HumanArm:
         """The measured grasp-site pose in the scene."""
         d, sid = self.world.data, self._wsite
         return d.site_xpos[sid].copy(), d.site_xmat[sid].reshape(3, 3).copy()
+
+    def own_point(self, p) -> np.ndarray:
+        """A point named for the default person (where it holds things out, rests its hand) as this person
+        has it: the same place relative to the shoulder, in proportion to the reach."""
+        p = np.asarray(p, float)
+        if self.reach == DEFAULT_REACH and np.array_equal(self.shoulder, DEFAULT_SHOULDER):
+            return p       # the default person: exactly the point named
+        return self.shoulder + (p - DEFAULT_SHOULDER) * (self.reach / DEFAULT_REACH)
+
+    def tremor(self, t: float) -> np.ndarray:
+        """The tremor's displacement of the hand at time t (world, m)."""
+        return self.tremor_amplitude * math.sin(2.0 * math.pi * self.tremor_frequency * t) * self._tremor_dir
 
     # ------------------------------------------------------------------ commands
     def clamp_target(self, p, t: float = 0.0) -> np.ndarray:
@@ -263,13 +290,15 @@ class HumanArm:
     def tick(self, t: float, iterations: int = 1) -> None:
         """One control tick at time t: follow the segment with IK and command the servos."""
         moving = self.segment is not None and not self.segment.done(t)
-        if not moving and self._settled:
+        if not moving and self._settled and self.tremor_amplitude == 0.0:
             return  # holding still at the goal: the servo targets stand
         if self.segment is not None:
             seg = next((g for g in self.segments if not g.done(t + self.dt)), self.segment)
             p_t, R_t = seg.at(t + self.dt)
         else:
             p_t, R_t = self.p_goal, self.R_goal
+        if self.tremor_amplitude > 0.0:
+            p_t = p_t + self.tremor(t + self.dt)
         q = self.q
         max_step = MAX_JOINT_SPEED * self.dt
         m, d = self.m, self.d

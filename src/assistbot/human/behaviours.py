@@ -16,7 +16,7 @@ from typing import Callable, Generator
 import numpy as np
 
 from assistbot import catalogue
-from assistbot.human.arm import SHOULDER_XY, grip_orientation, rot_y, rot_z
+from assistbot.human.arm import grip_orientation, rot_y, rot_z
 from assistbot.human.perception import RobotView
 from assistbot.interfaces import Status
 from assistbot.task import DRINK_FRACTION
@@ -189,7 +189,7 @@ def _carry_height(c, p) -> float | None:
 
 def _to_rest(c) -> Generator[None, None, bool]:
     """Bring the hand back to its resting place near the body, with a relaxed wrist."""
-    return (yield from _move(c, REST, c.arm.R_rest))
+    return (yield from _move(c, c.arm.own_point(REST), c.arm.R_rest))
 
 
 def _close(c, posture: str, obj: str) -> Generator[None, None, bool]:
@@ -216,7 +216,7 @@ def grasp(c, object: str, grip: str = "ag", lift: bool = True, hold_out: bool = 
     if c.world.human_holding() is not None:
         return False, f"the hand already holds the {c.world.human_holding()}"
     target = grasp_point(c, object, grip)
-    R = grip_orientation(grip, target)
+    R = grip_orientation(grip, target, c.arm.shoulder_xy)
     pre = target + (np.array([0, 0, 0.08]) if grip == "ag" else 0.08 * R[:, 2])  # above / back along the fingers
     c.arm.set_posture("open")
     if not (yield from _move(c, pre, R)):
@@ -229,14 +229,21 @@ def grasp(c, object: str, grip: str = "ag", lift: bool = True, hold_out: bool = 
         return False, f"the grip on the {object} did not close"
     if lift:
         yield from _move(c, c.arm.p_goal + np.array([0, 0, LIFT]), R)
+        if c.profile.drop_chance > 0.0 and c.rng.random() < c.profile.drop_chance:
+            # a weak hand lets go of what it has just lifted: it falls in the physics
+            c.world.human_release(object)
+            c.arm.set_posture("open")
+            c.note("dropped", {"object": object})
+            return False, f"let go of the {object}"
     if hold_out and c.world.human_holding() == object:
         return (yield from globals()["hold_out"](c, object))
     return c.world.human_holding() == object, f"{object} in hand"
 
 
 def hold_out_point(c) -> np.ndarray:
-    """Where this person holds things (and the open hand) out: HOLD_OUT moved by the profile's habit."""
-    return HOLD_OUT + np.asarray(c.profile.hold_out_offset, float)
+    """Where this person holds things (and the open hand) out: HOLD_OUT moved by the profile's habit, as this
+    person's body has it (`HumanArm.own_point`)."""
+    return c.arm.own_point(HOLD_OUT + np.asarray(c.profile.hold_out_offset, float))
 
 
 def _middle(c, obj: str) -> np.ndarray:
@@ -290,7 +297,7 @@ def hold_out(c, object: str | None = None) -> Gen:
     # keep the grip, turned about the vertical so the fingers point along the shoulder's bearing to the point
     _, R = c.arm.hand_pose()
     target = hold_out_point(c)
-    bearing = np.arctan2(*(target[:2] - SHOULDER_XY)[::-1])
+    bearing = np.arctan2(*(target[:2] - c.arm.shoulder_xy)[::-1])
     R = rot_z(bearing - np.arctan2(-R[1, 2], -R[0, 2])) @ R
     lowest = HOLD_OUT_BASE_Z + c.profile.hold_out_dz
     target[2] = max(target[2], lowest + float(c.arm.hand_pose()[0][2] - _center_base(c, held)[2]))
@@ -334,7 +341,7 @@ def put_down(c, object: str | None = None, at: tuple[float, float] | None = None
     # straightened, the fingers turned about the vertical toward the spot's bearing from the shoulder (as the
     # arm reaches there; the object stays upright), if the arm can turn the hand so; else as held
     Ru = upright @ R
-    bearing = np.arctan2(*(spot - SHOULDER_XY)[::-1])
+    bearing = np.arctan2(*(spot - c.arm.shoulder_xy)[::-1])
     straighten = rot_z(bearing - np.arctan2(-Ru[1, 2], -Ru[0, 2])) @ upright
     for turn in (straighten, np.eye(3)):
         offset = turn @ (hand - base)          # the hand relative to the object's base
@@ -448,7 +455,7 @@ def request(c, hold: float = 3.0) -> Gen:
         return False, "the hand is not empty"
     c.arm.set_posture("request")
     at = hold_out_point(c)
-    R = grip_orientation("request", at)
+    R = grip_orientation("request", at, c.arm.shoulder_xy)
     ok = yield from _move(c, at, R)
     yield from _wait(c, hold)
     c.arm.set_posture("open")
@@ -462,12 +469,12 @@ def point(c, object: str, hold: float = 1.5) -> Gen:
     Succeeds when the measured finger direction was within POINT_TOLERANCE of the object."""
     target = _pos(c, object) + np.array([0, 0, 0.10])
     c.arm.set_posture("point")
-    d = np.array([*(target[:2] - SHOULDER_XY), 0.0])       # the bearing from the shoulder
+    d = np.array([*(target[:2] - c.arm.shoulder_xy), 0.0])       # the bearing from the shoulder
     d /= max(float(np.linalg.norm(d)), 1e-6)
     p = target - 0.15 * d
     if p[0] > POINT_X_MAX:  # an object in the RWS: point from this side of the line, along the same bearing
         p = p - d * (p[0] - POINT_X_MAX) / max(d[0], 1e-6)
-    ok = yield from _move(c, p, grip_orientation("point", target))
+    ok = yield from _move(c, p, grip_orientation("point", target, c.arm.shoulder_xy))
     hand, R = c.arm.hand_pose()
     v = target - hand
     err = float(np.arccos(np.clip((-R[:, 2]) @ v / max(float(np.linalg.norm(v)), 1e-6), -1.0, 1.0)))
@@ -494,7 +501,7 @@ def pull_stopper(c, timeout: float = 3.0, wait_for_robot: float = 0.0) -> Gen:
     if w.human_holding() is not None:
         return False, "the hand is not empty"
     s = w.data.site_xpos[w.site_id["stopper_grasp"]].copy()
-    R = grip_orientation("ag", s)
+    R = grip_orientation("ag", s, c.arm.shoulder_xy)
     c.arm.set_posture("open")
     if not (yield from _move(c, s + np.array([0, 0, 0.07]), R)):
         return False, "could not reach above the stopper"

@@ -46,15 +46,15 @@ class HumanController:
     def __init__(self, world, profile: str | Profile = "active", seed: int = 0, config: HumanConfig | None = None,
                  see: Callable[[object], RobotView] = see_robot, dt: float = CONTROL_DT) -> None:
         if config is not None:
-            profile = config.profile
-        self.profile = PROFILES[profile] if isinstance(profile, str) else profile
-        if config is not None and config.overrides:
-            self.profile = self.profile.with_(**config.overrides)
+            self.profile = config.profile_params()
+        else:
+            self.profile = PROFILES[profile] if isinstance(profile, str) else profile
         self.world = world
         self.dt = float(dt)
         self.physics_steps = max(1, int(round(self.dt / world.model.opt.timestep)))
         self.rng = np.random.default_rng(seed)
-        self.arm = HumanArm(world, speed=self.profile.speed, dt=self.dt)
+        self.arm = HumanArm(world, speed=self.profile.speed, dt=self.dt, tremor_amplitude=self.profile.tremor_amplitude,
+                            tremor_frequency=self.profile.tremor_frequency)
         self.see = see
         self.script: list[Step] = list(config.script) if config is not None else []
         self._scripted = bool(self.script)

@@ -12,10 +12,14 @@ from __future__ import annotations
 import xml.etree.ElementTree as ET
 from functools import lru_cache
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 import mujoco
 
 from assistbot.resources import MJCF
+
+if TYPE_CHECKING:
+    from assistbot.human.population import Body
 
 HUMAN_XML: Path = MJCF / "human.xml"
 
@@ -39,6 +43,11 @@ def arm_model_xml() -> str:
     return ET.tostring(root, encoding="unicode")
 
 
-def arm_model() -> mujoco.MjModel:
-    """A fresh MjModel of the arm (joints in HUMAN_ARM_JOINTS order)."""
-    return mujoco.MjModel.from_xml_string(arm_model_xml())
+def arm_model(body: "Body | None" = None) -> mujoco.MjModel:
+    """A fresh MjModel of the arm (joints in HUMAN_ARM_JOINTS order): the default person's, or ``body``'s
+    (`human.body.apply_body`, the same edit the scene gets)."""
+    if body is None or body.is_default():
+        return mujoco.MjModel.from_xml_string(arm_model_xml())
+    from assistbot.human.body import apply_body
+
+    return apply_body(mujoco.MjSpec.from_string(arm_model_xml()), body).compile()

@@ -20,6 +20,8 @@ class Profile:
     hesitation      s of pause before each motion (a person who hesitates)
     hold_out_dx/dy/dz  where this person holds things out and the open hand: m from the nominal
                     point (behaviours.HOLD_OUT), within HOLD_OUT_REGION
+    drop_chance     chance (0..1) of letting go of an object just lifted (weakness); it falls in the physics
+    tremor_amplitude, tremor_frequency  a tremor of the hand: m (0: none) along one direction, Hz
     """
 
     name: str
@@ -32,6 +34,9 @@ class Profile:
     hold_out_dx: float = 0.0
     hold_out_dy: float = 0.0
     hold_out_dz: float = 0.0
+    drop_chance: float = 0.0
+    tremor_amplitude: float = 0.0
+    tremor_frequency: float = 6.0
 
     @property
     def hold_out_offset(self) -> tuple[float, float, float]:

@@ -12,6 +12,11 @@ Schema (YAML)::
       hold_out_dx: 0.0           # where things are held out: m from the nominal point (x, y within
       hold_out_dy: 0.0           #   ±0.08, z within ±0.06)
       hold_out_dz: 0.0
+      drop_chance: 0.0           # chance of letting go of an object just lifted (weakness)
+      tremor_amplitude: 0.0      # m, a tremor of the hand (tremor_frequency: Hz, 4-8)
+      partner: 12                # a person of the population (human.population): a seed, or a mapping
+                                 #   of attributes {upper_arm: 1.05, rom: 0.2, ...}; the parameters above
+                                 #   still override what the partner changes of the profile
       script:                    # optional; an active human without one uses its default policy
         - {do: grasp, object: bottle, grip: side, hold_out: true}
         - {do: put_down, object: bottle, at: [-0.25, -0.15]}
@@ -35,6 +40,7 @@ from typing import Any, Mapping
 
 from assistbot import catalogue
 from assistbot.errors import UserError
+from assistbot.human.population import LIMITS as PARTNER_LIMITS, Partner, parse_partner
 from assistbot.human.profiles import HOLD_OUT_REGION, PROFILES, Profile
 
 OBJECTS = catalogue.TASK_OBJECTS
@@ -57,7 +63,8 @@ STEPS: dict[str, tuple[str, tuple[str, ...], tuple[str, ...]]] = {
 EVENTS_WITH_OBJECT = ("robot_holds", "robot_offers")
 EVENTS_PLAIN = ("robot_requests", "stopper_removed", "glass_full", "glass_upright")
 EVENTS = ("robot_said", *EVENTS_WITH_OBJECT, *EVENTS_PLAIN, "time", "done")
-PARAMS = ("reaction_delay", "speed", "grip", "wrong_grip", "hesitation", "hold_out_dx", "hold_out_dy", "hold_out_dz")
+PARAMS = ("reaction_delay", "speed", "grip", "wrong_grip", "hesitation", "hold_out_dx", "hold_out_dy", "hold_out_dz",
+          "drop_chance", "tremor_amplitude", "tremor_frequency", "partner")
 
 
 def _known_tags() -> set[str]:
@@ -93,8 +100,15 @@ class HumanConfig:
     overrides: dict = field(default_factory=dict)
     script: tuple[Step, ...] = ()
 
+    @property
+    def partner(self) -> Partner:
+        """The person: the population's (``human.partner``), else the default person."""
+        return self.overrides.get("partner") or Partner()
+
     def profile_params(self) -> Profile:
-        return PROFILES[self.profile].with_(**self.overrides)
+        """The profile as this person behaves: the partner's changes, then the scenario's own parameters."""
+        params = {k: v for k, v in self.overrides.items() if k != "partner"}
+        return self.partner.profile(PROFILES[self.profile]).with_(**params)
 
 
 def parse_human(mapping: Any, where: str = "scenario") -> HumanConfig:
@@ -122,6 +136,8 @@ def parse_human(mapping: Any, where: str = "scenario") -> HumanConfig:
 def check_param(k: str, v: Any, where: str) -> Any:
     """One of the person's parameters (PARAMS), checked; the value the person takes (a grip's short name, else
     a float). The one check for a scenario's ``human:`` block, ``--set human.*`` and a sweep's values."""
+    if k == "partner":
+        return parse_partner(v, where)
     if k == "grip":
         if str(v).lower() not in GRIPS:
             raise UserError(where, "human.grip", f"unknown grip {v!r}; use ag (above) or sg (side)")
@@ -138,6 +154,10 @@ def check_param(k: str, v: Any, where: str) -> Any:
         raise UserError(where, "human.speed", f"mean hand speed in m/s between 0.02 and 1.0, got {v:g}")
     if k in ("reaction_delay", "hesitation") and not 0.0 <= v <= 10.0:
         raise UserError(where, f"human.{k}", f"seconds between 0 and 10, got {v:g}")
+    if k in ("drop_chance", "tremor_amplitude", "tremor_frequency"):
+        lo, hi = PARTNER_LIMITS[k]
+        if not lo <= v <= hi:
+            raise UserError(where, f"human.{k}", f"between {lo:g} and {hi:g}, got {v:g}")
     if k.startswith("hold_out_d"):
         limit = HOLD_OUT_REGION["xyz".index(k[-1])]
         if not -limit <= v <= limit:

@@ -19,6 +19,8 @@ measured quantities, never by who is doing what:
 
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
 import mujoco
 import numpy as np
 
@@ -27,6 +29,9 @@ from assistbot.errors import UserError
 from assistbot.world import layout
 from assistbot.world.arrangement import Arrangement
 from assistbot.world.state import in_cylinder, in_glass_region
+
+if TYPE_CHECKING:
+    from assistbot.human.population import Body
 
 STOPPER_RELEASE_FORCE = 12.0   # N, pull-out force of the stopper's friction fit
 STOPPER_FORCE_TAU = 0.02       # s, low-pass time constant of the measured pull
@@ -69,14 +74,21 @@ GRIPPER_OPEN = -0.3
 GRIPPER_CLOSED = 1.6
 
 
-def build_world(arrangement: Arrangement, seed: int = 0) -> "World":
-    """Load the scene and place bottle, stopper, glass and liquid as `arrangement` says.
+def build_world(arrangement: Arrangement, seed: int = 0, body: "Body | None" = None) -> "World":
+    """Load the scene and place bottle, stopper, glass and liquid as `arrangement` says; the person has
+    ``body`` (`assistbot.human.population.Body`; None: the default person's).
 
     The seed only jitters the liquid's starting layout (deterministically)."""
+    from assistbot.human.body import apply_body
+    from assistbot.human.population import Body
+
     arrangement.validate()
-    spec = mujoco.MjSpec.from_file(str(layout.SCENE_XML))
+    body = body or Body()
+    spec = apply_body(mujoco.MjSpec.from_file(str(layout.SCENE_XML)), body)
     model = spec.compile()
-    return World(model, arrangement, seed)
+    world = World(model, arrangement, seed)
+    world.human_body = body
+    return world
 
 
 def _quat_x180() -> np.ndarray:
@@ -96,6 +108,8 @@ class World:
         self.data = mujoco.MjData(model)
         self.arrangement = arrangement
         self.seed = int(seed)
+        #: the person's body as built in this model (`build_world` sets it; the default person's otherwise)
+        self.human_body: Body | None = None
         m = model
         self.body_id = {n: m.body(n).id for n in (*OBJECTS, "human_r_hand", "robot_gripper")}
         self.eq_stopper = m.equality("stopper_fit").id
