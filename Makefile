@@ -7,7 +7,7 @@ BIN    := $(VENV)/bin
 STAMP  := $(VENV)/.installed
 DEBS   := libosmesa6 libegl1 libegl-mesa0 libgl1-mesa-dri espeak-ng
 
-.PHONY: demo test test-all lint bench matrix dnf-vs-fsm setup debs clean wheel-check
+.PHONY: demo test test-all lint bench matrix partners dnf-vs-fsm setup debs clean wheel-check
 
 setup: $(STAMP)
 
@@ -52,6 +52,12 @@ WORKERS ?= 2
 matrix: $(STAMP)
 	$(BIN)/assistbot sweep scenarios/sweeps/matrix.yaml --workers $(WORKERS) --out render/sweeps/matrix
 	$(BIN)/assistbot report render/sweeps/matrix
+
+# People the robot has never met: 200 episodes of partners 1000-1099 of the population on the task space
+# (scenarios/sweeps/partners.yaml), vision, two workers, then the report by partner attribute. Resumes.
+partners: $(STAMP)
+	$(BIN)/assistbot sweep scenarios/sweeps/partners.yaml --workers $(WORKERS) --out render/sweeps/partners
+	$(BIN)/assistbot report render/sweeps/partners
 
 # The field architecture against the state-machine baseline under degraded cues (scenarios/sweeps/dnf-vs-fsm/):
 # one sweep per perturbation, 684 episodes in all, each reported per agent. Hours on 2 cores; resumes.

@@ -172,7 +172,7 @@ class AgentExecutor(FakeExecutor):
         for job in jobs:
             self.ran.append(job.id)
             p = job.params
-            fail = p["agent"] == "fsm" and p["perturb.cue_delay"] >= 1
+            fail = p.get("agent") == "fsm" and p["perturb.cue_delay"] >= 1
             yield {"job_id": job.id, "scenario": job.scenario, **p, "seed": job.seed, "perception": job.perception,
                    "time_limit": job.time_limit, "status": "ok", "success": not fail, "time_to_drink": None if fail else 40.0,
                    "end_reason": "repeating" if fail else "drink", "end_detail": "", "decisions": "A", "n_decisions": 1,
@@ -218,3 +218,38 @@ def test_a_results_folder_of_another_version_is_refused_with_the_reason(tmp_path
     with pytest.raises(UserError, match="holds a sweep over agent, this one sweeps human.profile"):
         ResultStore(tmp_path, columns_for(["human.profile"])).open()
     assert (tmp_path / "results.csv").read_bytes() == before
+
+
+class PartnerExecutor(AgentExecutor):
+    """Rows of a partner sweep: partners with a tremor fail, the others drink."""
+
+    def run(self, jobs):
+        from assistbot.human.population import parse_partner
+
+        for row in super().run(jobs):
+            fail = parse_partner(row["human.partner"], "test").tremor_amplitude > 0
+            row.update(success=not fail, time_to_drink=None if fail else 40.0, end_reason="stalled" if fail else "drink")
+            yield row
+
+
+def test_a_partner_sweep_is_sampled_from_its_grid_and_reported_by_partner_attribute(tmp_path):
+    from assistbot.human.population import sample_partner
+    from assistbot.sweep import write_report
+
+    p = tmp_path / "tiny.yaml"
+    p.write_text(TINY)
+    spec = SweepSpec(scenarios=[str(p)], seeds=1, perception="oracle", sample=12, sample_seed=3,
+                     params=[Param.parse("human.partner", "1000:1019:20"), Param.parse("human.profile", "active,passive")])
+    jobs = build_jobs(spec)
+    assert len(jobs) == 12 and [j.id for j in jobs] == [j.id for j in build_jobs(spec)]      # the same draw each time
+    assert len({(j.params["human.partner"], j.params["human.profile"]) for j in jobs}) == 12
+    out = tmp_path / "out"
+    run_sweep(spec, out, executor=PartnerExecutor(), progress=False, log=lambda m: None)
+    md = write_report(out)[0].read_text()
+    trembling = sum(sample_partner(int(j.params["human.partner"])).tremor_amplitude > 0 for j in jobs)
+    assert 0 < trembling < 12
+    assert f"| tremor | yes | {trembling} | 0 | 0.00 |" in md
+    assert f"| tremor | no | {12 - trembling} | {12 - trembling} | 1.00 |" in md
+    assert "## human.partner" not in md           # by attribute, not a row per partner
+    with pytest.raises(UserError, match="sample"):
+        SweepSpec(scenarios=[str(p)], sample=0)

@@ -13,8 +13,11 @@ import copy
 import hashlib
 import itertools
 import json
+import zlib
 from dataclasses import dataclass, field
 from typing import Any
+
+import numpy as np
 
 from assistbot import catalogue
 from assistbot.errors import UserError
@@ -110,7 +113,8 @@ def scenario_data_with(scenario, values: dict[str, Any], where: str) -> dict[str
 
 
 def build_jobs(spec: SweepSpec) -> list[Job]:
-    """Every episode of the sweep, seeds outermost (each full pass over the grid is one seed)."""
+    """Every episode of the sweep, seeds outermost (each full pass over the grid is one seed); with
+    ``spec.sample``, that many of them drawn at random (seeded by ``spec.sample_seed``), in the same order."""
     from assistbot.scenario import load_scenario
     from assistbot.sweep.spec import check_value, is_scenario_path
 
@@ -143,4 +147,7 @@ def build_jobs(spec: SweepSpec) -> list[Job]:
                                 time_limit=tl, scenario_data=data,
                                 scenario_path=str(scenario.path) if scenario.path else None,
                                 scenario_sha=sha, overrides=overrides))
+    if spec.sample is not None and spec.sample < len(jobs):
+        rng = np.random.default_rng([spec.sample_seed, zlib.crc32(b"sample")])
+        jobs = [jobs[i] for i in sorted(rng.choice(len(jobs), size=spec.sample, replace=False))]
     return jobs

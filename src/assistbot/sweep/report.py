@@ -300,6 +300,64 @@ def _task_space_section(rows: list[dict], params: list[str]) -> tuple[list[str],
     return md, summary
 
 
+#: the partner population's attributes the report splits a ``human.partner`` sweep by: name -> (the value's
+#: class for a partner, the classes in order)
+def _partner_classes() -> dict[str, tuple[Any, list[str]]]:
+    def tertile(lo: float, hi: float, v: float, names=("small", "middle", "large")) -> str:
+        return names[min(2, int(3 * (v - lo) / (hi - lo)))]
+
+    from assistbot.human import population as P
+
+    def reach(p):
+        return tertile(P.UPPER_ARM_RANGE[0] + P.FOREARM_RANGE[0], P.UPPER_ARM_RANGE[1] + P.FOREARM_RANGE[1],
+                       p.body.upper_arm + p.body.forearm, ("short", "middle", "long"))
+
+    yes_no = ["no", "yes"]
+    return {
+        "arm length": (reach, ["short", "middle", "long"]),
+        "shoulder height": (lambda p: tertile(*P.SHOULDER_HEIGHT_RANGE, p.body.shoulder_height, ("low", "middle", "high")),
+                            ["low", "middle", "high"]),
+        "seat back": (lambda p: tertile(0.0, P.SEAT_BACK_MAX, p.body.seat_back, ("near", "middle", "far")), ["near", "middle", "far"]),
+        "reduced range of motion": (lambda p: yes_no[p.body.rom > 0], yes_no),
+        "tremor": (lambda p: yes_no[p.tremor_amplitude > 0], yes_no),
+        "weakness (lets go)": (lambda p: yes_no[p.drop_chance > 0], yes_no),
+        "hesitation": (lambda p: yes_no[p.hesitation > 0], yes_no),
+        "holds out": (lambda p: tertile(-P.HOLD_OUT_REGION[2], P.HOLD_OUT_REGION[2], p.hold_out_dz, ("low", "middle", "high")),
+                      ["low", "middle", "high"]),
+    }
+
+
+def _partner_section(rows: list[dict], params: list[str]) -> list[str]:
+    """A ``human.partner`` sweep by the partners' attributes (`assistbot.human.population`): which bodies,
+    impairments and habits fail."""
+    if "human.partner" not in params:
+        return []
+    from assistbot.human.population import parse_partner
+
+    people = {}
+    for r in rows:
+        v = r.get("human.partner")
+        if v is not None and v not in people:
+            people[v] = parse_partner(v, "results.csv", "human.partner")
+    md = ["## By partner attribute", "",
+          f"{len(people)} partners of the population (`assistbot.human.population`), each episode counted under "
+          "its partner's class of each attribute (tertiles of the population's range, or whether the impairment "
+          "is present).", "",
+          "| attribute | class | n | drank | success rate | 95% CI (Wilson) | time to drink (s) | 95% CI (t) |",
+          "|---|---|---:|---:|---:|---|---:|---|"]
+    for name, (classify, order) in _partner_classes().items():
+        groups: dict[str, list[dict]] = defaultdict(list)
+        for r in rows:
+            if r.get("human.partner") in people:
+                groups[classify(people[r["human.partner"]])].append(r)
+        for cls in order:
+            if groups.get(cls):
+                c = Cell.of(groups[cls])
+                md.append(f"| {name} | {cls} | {c.n} | {c.successes} | {_f(c.rate)} | {_ci(c.rate_low, c.rate_high)} | "
+                          f"{_f(c.ttd_mean, 1)} | {_ci(c.ttd_low, c.ttd_high, 1)} |")
+    return md + [""]
+
+
 def _failure_section(rows: list[dict]) -> list[str]:
     """How episodes ended, by kind, and the limits a drinking episode must also keep."""
     from assistbot.sweep.stats import wilson
@@ -346,8 +404,9 @@ def write_report(results_dir: str | Path, out: str | Path | None = None, expect:
     if by is not None and by not in params:
         raise UserError("--by", by, f"not a swept parameter of {results_dir}; its parameters: {', '.join(params) or '(none)'}")
     scenarios = list(dict.fromkeys(r["scenario"] for r in rows))
-    factors = (["scenario"] if len(scenarios) > 1 else []) + params
-    varied = [p for p in params if len(_ordered([r.get(p) for r in rows])) > 1]
+    # partners are many: the report splits them by attribute (`_partner_section`), not one row each
+    factors = (["scenario"] if len(scenarios) > 1 else []) + [p for p in params if p != "human.partner"]
+    varied = [p for p in params if p != "human.partner" and len(_ordered([r.get(p) for r in rows])) > 1]
     written: list[Path] = []
     overall = Cell.of(rows)
     seeds = sorted({r["seed"] for r in rows if r.get("seed") is not None})
@@ -376,7 +435,7 @@ def write_report(results_dir: str | Path, out: str | Path | None = None, expect:
             written.append(png)
             md += [f"![success vs {factor}]({png.name})", ""]
     space_md, space_summary = _task_space_section(rows, params)
-    md += space_md
+    md += space_md + _partner_section(rows, params)
     summary += space_summary
     pairs = list(itertools.combinations(varied, 2))[:MAX_HEATMAPS]
     if pairs:

@@ -9,6 +9,8 @@ A parameter is a dotted path and a value spec:
     objects.glass.position=[-0.25,0.1],[-0.2,0.15]   object places as [x, y] pairs (table metres)
     objects.glass.position.x=-0.3:-0.2:3             or one coordinate, the other kept from the scenario
     agent=dnf,fsm                       the robot's mind (assistbot.agents), as the scenario key ``agent:``
+    human.partner=randint(0,9999)x50    people of the partner population (assistbot.human.population), by seed;
+                                        also 0:99:100 (partners 0 to 99)
 
 Random specs: uniform(a,b), loguniform(a,b), normal(mean,sd), randint(a,b) (ends included),
 choice(a|b|c), each followed by ``xN``. The same sample seed gives the same values, so a
@@ -24,6 +26,8 @@ A sweep file holds the same in YAML::
     perception: oracle                 # vision (default) or oracle
     time_limit: 120                    # optional: replaces the scenarios' time limits
     sample_seed: 0                     # optional: seeds the random value specs
+    sample: 200                        # optional: run only this many of the grid's episodes (all seeds),
+                                       #   drawn at random (seeded by sample_seed): a big space, sampled
     out: render/sweeps/k-delay         # optional: the results folder (relative to where you run)
 """
 
@@ -48,7 +52,7 @@ OBJECT_PATHS = tuple(f"objects.{o}.{k}" for o in catalogue.TASK_OBJECTS
                      for k in ("position", "position.x", "position.y", "zone", "state"))
 #: paths that change the scenario itself rather than override a parameter: the partner's profile
 SCENARIO_PATHS = ("human.profile", "agent")
-FILE_KEYS = ("scenario", "scenarios", "params", "seeds", "perception", "time_limit", "sample_seed", "out")
+FILE_KEYS = ("scenario", "scenarios", "params", "seeds", "perception", "time_limit", "sample_seed", "sample", "out")
 PERCEPTIONS = ("vision", "oracle")
 _RANDOM = re.compile(r"^\s*([a-z_]+)\s*\((.*)\)\s*[x×*]\s*(\d+)\s*$", re.IGNORECASE)
 _DISTRIBUTIONS = ("uniform", "loguniform", "normal", "randint", "choice")
@@ -224,6 +228,11 @@ def check_value(path: str, value: Any, where: str) -> Any:
         if value not in PROFILES:
             raise UserError(where, path, f"unknown profile {value!r}; use one of {', '.join(PROFILES)}")
         return value
+    if path == "human.partner":
+        from assistbot.human.population import parse_partner
+
+        parse_partner(value, where)
+        return value      # the seed: rows and job ids name the partner by it
     if path.startswith("human."):
         from assistbot.human.script import check_param
 
@@ -329,6 +338,7 @@ class SweepSpec:
     sample_seed: int = 0
     source: str = "--param"  # where mistakes are reported: --param or the sweep file
     out: str | None = None
+    sample: int | None = None  # run only this many episodes of the grid x seeds, drawn with sample_seed
 
     def __post_init__(self) -> None:
         if not self.scenarios:
@@ -339,6 +349,8 @@ class SweepSpec:
             tl = self.time_limit
             if isinstance(tl, bool) or not isinstance(tl, (int, float)) or not 0 < tl <= 3600:
                 raise UserError(self.source, "time_limit", f"simulated seconds in (0, 3600], got {tl!r}")
+        if self.sample is not None and (isinstance(self.sample, bool) or not isinstance(self.sample, int) or self.sample < 1):
+            raise UserError(self.source, "sample", f"a number of episodes >= 1, got {self.sample!r}")
         seen = set()
         for p in self.params:
             if p.path in seen:
@@ -366,6 +378,8 @@ class SweepSpec:
                              "seeds": self.seeds, "perception": self.perception, "sample_seed": self.sample_seed}
         if self.time_limit is not None:
             d["time_limit"] = self.time_limit
+        if self.sample is not None:
+            d["sample"] = self.sample
         return d
 
 
@@ -429,4 +443,4 @@ def sweep_from_mapping(data: Any, where: str, base: Path | None = None) -> Sweep
     return SweepSpec(scenarios=[resolve(s) for s in scen], params=params,
                      seeds=parse_seeds(data.get("seeds", 1), where), perception=str(data.get("perception", "vision")),
                      time_limit=data.get("time_limit"), sample_seed=sample_seed, source=where,
-                     out=out)
+                     out=out, sample=data.get("sample"))
