@@ -44,7 +44,7 @@ lint: $(STAMP)
 	$(BIN)/mypy
 
 test-all: $(STAMP)
-	$(BIN)/python -m pytest -q
+	$(BIN)/python -m pytest -q -n $(TEST_WORKERS) --dist loadfile
 
 # The task space as a benchmark: 24 arrangements x 3 profiles x 3 seeds with vision (216 episodes,
 # two workers; about 75 min on 2 cores: 24 min a seed), then its report. Resumes where it stopped.
