@@ -8,8 +8,9 @@ The same edit is applied to the scene's spec (`world.build_world`) and to the ar
   table (torso top, shoulders, neck, head, mouth and eyes, the right arm) moves by the same height,
   while the hips, the legs and the left forearm resting on the table stay;
 - the right upper arm and forearm are scaled in length (their capsules and the next joint's place);
-- a reduced range of motion narrows each arm joint's range (and its servo's) by a fraction toward the
-  middle of the range, never so far that the resting posture falls outside it.
+- a reduced range of motion narrows the joints that carry the hand out (`ROM_JOINTS`: shoulder flexion
+  and abduction, elbow; and their servos) toward the resting posture: each end of a range comes that
+  fraction of its distance nearer the resting angle.
 """
 
 from __future__ import annotations
@@ -30,6 +31,10 @@ SEAT_GEOM = "human_chair_seat"
 SHOULDER_BODY = "human_r_upper_arm"
 FOREARM_BODY = "human_r_forearm"
 HAND_BODY = "human_r_hand"
+#: the joints a reduced range of motion narrows: those that carry the hand out (shoulder flexion and
+#: abduction, elbow), which limit the reach; the rotations of the upper arm and forearm and the wrist,
+#: which orient the hand for a grip, keep their range (the person's grips have no other way to be made)
+ROM_JOINTS = ("human_r_shoulder_flex", "human_r_shoulder_abd", "human_r_elbow")
 
 
 @lru_cache(maxsize=1)
@@ -87,10 +92,11 @@ def apply_body(spec: mujoco.MjSpec, body: Body) -> mujoco.MjSpec:
         nxt.pos = nxt.pos * scale
     if body.rom > 0.0:
         for name, rest in zip(HUMAN_ARM_JOINTS, resting_arm()):
+            if name not in ROM_JOINTS:
+                continue
             j = spec.joint(name)
             lo, hi = (float(v) for v in j.range)
-            mid = 0.5 * (lo + hi)
-            rng = np.array([min(lo + body.rom * (mid - lo), rest), max(hi - body.rom * (hi - mid), rest)])
+            rng = np.array([rest + (1.0 - body.rom) * (lo - rest), rest + (1.0 - body.rom) * (hi - rest)])
             j.range = rng
             act = spec.actuator(name)
             if act is not None:
