@@ -71,6 +71,8 @@ def test_a_partner_is_built_in_the_physics_with_the_same_arm_as_the_one_it_plans
         assert ik.joint(j).range == pytest.approx(m.joint(j).range)
         assert m.jnt_range[m.joint(j).id][1] - m.jnt_range[m.joint(j).id][0] < (
             default.model.jnt_range[default.model.joint(j).id][1] - default.model.jnt_range[default.model.joint(j).id][0])
+    # the joints that orient the hand for a grip keep their range
+    assert m.joint("human_r_forearm_rot").range == pytest.approx(default.model.joint("human_r_forearm_rot").range)
     # the default body changes nothing
     assert HumanArm(default).reach == pytest.approx(DEFAULT_REACH)
 

@@ -4,7 +4,7 @@ A `Partner` has three parts:
 
 - `Body`: the right arm's segment lengths and the sitting shoulder height as ratios to the default
   person (whose arm is a 50th-percentile adult's), the seat moved back or aside, and a reduced range of
-  motion. Built in the physics: `assistbot.human.body.apply_body` edits the human in the MJCF spec of
+  motion of the joints that carry the hand out. Built in the physics: `assistbot.human.body.apply_body` edits the human in the MJCF spec of
   the scene and of the arm's own IK model alike.
 - impairment and habits, which are parameters of the person's behaviour (`Profile` fields): a tremor of
   the hand, slower motions, a chance of letting go of a lifted object, hesitation, a later reaction,
@@ -39,7 +39,7 @@ SHOULDER_HEIGHT_RANGE = (505 / 575, 645 / 575)
 #: cannot come closer) and to either side
 SEAT_BACK_MAX = 0.08
 SEAT_SIDE_MAX = 0.08
-#: largest narrowing of every arm joint's range toward the resting posture (fraction of the range)
+#: largest narrowing of the reach joints' ranges toward the resting posture (`human.body.ROM_JOINTS`)
 ROM_MAX = 0.30
 #: tremor of the hand: amplitude (m) and frequency (Hz) ranges
 TREMOR_AMPLITUDE_MAX = 0.015
@@ -59,7 +59,7 @@ class Body:
     shoulder_height: float = 1.0    # shoulder above the seat (the torso, head and arm move with it)
     seat_back: float = 0.0          # m farther from the table than the default seat
     seat_side: float = 0.0          # m to the person's left (+) or right (-)
-    rom: float = 0.0                # each arm joint's range narrowed by this fraction, toward the resting posture
+    rom: float = 0.0                # the reach joints' ranges narrowed by this fraction toward the resting posture
 
     def is_default(self) -> bool:
         return self == Body()
