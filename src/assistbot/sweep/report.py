@@ -300,9 +300,9 @@ def _task_space_section(rows: list[dict], params: list[str]) -> tuple[list[str],
     return md, summary
 
 
-#: the partner population's attributes the report splits a ``human.partner`` sweep by: name -> (the value's
-#: class for a partner, the classes in order)
 def _partner_classes() -> dict[str, tuple[Any, list[str]]]:
+    """The partner population's attributes a ``human.partner`` sweep is split by: name -> (the class of a
+    partner's value, the classes in order)."""
     def tertile(lo: float, hi: float, v: float, names=("small", "middle", "large")) -> str:
         return names[min(2, int(3 * (v - lo) / (hi - lo)))]
 
@@ -318,6 +318,8 @@ def _partner_classes() -> dict[str, tuple[Any, list[str]]]:
         "shoulder height": (lambda p: tertile(*P.SHOULDER_HEIGHT_RANGE, p.body.shoulder_height, ("low", "middle", "high")),
                             ["low", "middle", "high"]),
         "seat back": (lambda p: tertile(0.0, P.SEAT_BACK_MAX, p.body.seat_back, ("near", "middle", "far")), ["near", "middle", "far"]),
+        "seat aside": (lambda p: tertile(-P.SEAT_SIDE_MAX, P.SEAT_SIDE_MAX, p.body.seat_side, ("right", "middle", "left")),
+                       ["right", "middle", "left"]),
         "reduced range of motion": (lambda p: yes_no[p.body.rom > 0], yes_no),
         "tremor": (lambda p: yes_no[p.tremor_amplitude > 0], yes_no),
         "weakness (lets go)": (lambda p: yes_no[p.drop_chance > 0], yes_no),
