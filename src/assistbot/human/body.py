@@ -60,6 +60,14 @@ def _shift_upper(vec: np.ndarray, dz: float, z0: float) -> np.ndarray:
     return v
 
 
+def _move_geom(g, f) -> None:
+    """Apply ``f`` (a point -> a point) to a geom's placement: both ends of a ``fromto``, else its ``pos``."""
+    if not np.isnan(g.fromto[0]):
+        g.fromto = np.concatenate([f(g.fromto[:3]), f(g.fromto[3:])])
+    else:
+        g.pos = f(g.pos)
+
+
 def apply_body(spec: mujoco.MjSpec, body: Body) -> mujoco.MjSpec:
     """Edit the human in ``spec`` (a scene, or the arm alone) to ``body``; returns the spec."""
     if body.is_default():
@@ -67,14 +75,10 @@ def apply_body(spec: mujoco.MjSpec, body: Body) -> mujoco.MjSpec:
     person = spec.body("human_body")
     z0 = float(person.pos[2])
     person.pos = person.pos + np.array([-body.seat_back, body.seat_side, 0.0])
-    shoulder = spec.body(SHOULDER_BODY)
     if body.shoulder_height != 1.0:
-        dz = (body.shoulder_height - 1.0) * (float(shoulder.pos[2]) - seat_top())
+        dz = (body.shoulder_height - 1.0) * (float(spec.body(SHOULDER_BODY).pos[2]) - seat_top())
         for g in person.geoms:
-            if not np.isnan(g.fromto[0]):
-                g.fromto = np.concatenate([_shift_upper(g.fromto[:3], dz, z0), _shift_upper(g.fromto[3:], dz, z0)])
-            else:
-                g.pos = _shift_upper(g.pos, dz, z0)
+            _move_geom(g, lambda v: _shift_upper(v, dz, z0))
         for s in person.sites:
             s.pos = _shift_upper(s.pos, dz, z0)
         for b in person.bodies:
@@ -82,12 +86,8 @@ def apply_body(spec: mujoco.MjSpec, body: Body) -> mujoco.MjSpec:
     for name, child, scale in ((SHOULDER_BODY, FOREARM_BODY, body.upper_arm), (FOREARM_BODY, HAND_BODY, body.forearm)):
         if scale == 1.0:
             continue
-        seg = spec.body(name)
-        for g in seg.geoms:
-            if not np.isnan(g.fromto[0]):
-                g.fromto = g.fromto * scale
-            else:
-                g.pos = g.pos * scale
+        for g in spec.body(name).geoms:
+            _move_geom(g, lambda v: v * scale)
         nxt = spec.body(child)
         nxt.pos = nxt.pos * scale
     if body.rom > 0.0:
