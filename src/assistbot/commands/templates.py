@@ -1,9 +1,10 @@
 """`assistbot templates`: calibrate the colours and build the vision template library in assets/templates/.
 
 Renders labelled scenes (the "library" seed stream: never used for scoring) from the head
-cameras over random arrangements, object positions, hand postures and head angles, and
-writes small prototype PNGs, index.json (classes, prototypes, labelled feature examples) and
-calibration.json.  Deterministic for a seed: the same seed rewrites identical files.
+cameras over random arrangements, object positions, hand postures and head angles, 30 % of
+them with the default person and the rest with people of the population's library seeds (0-999;
+experiments on unseen partners use seeds from 1000), and writes small prototype PNGs, index.json
+(classes, prototypes, labelled feature examples) and calibration.json.  Deterministic for a seed: the same seed rewrites identical files.
 With --check it only loads the library (exit 2 with a message if it is missing).
 """
 
@@ -20,9 +21,26 @@ ORDER = 40
 
 def add_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument("--seed", type=int, default=0, help="library seed (default 0)")
-    p.add_argument("--scenes", type=int, default=3240, help="labelled scenes to render (default 3240, 360 per hand posture)")
+    p.add_argument("--scenes", type=int, default=6480, help="labelled scenes to render (default 6480, 720 per hand posture)")
     p.add_argument("--out", type=Path, default=None, help="output folder (default: the package's assistbot/assets/templates)")
+    p.add_argument("--partners", default=None, metavar="A:B|none",
+                   help="population seeds whose people most scenes show (default: population.LIBRARY_SEEDS, 0:999); "
+                        "none: the default person only")
     p.add_argument("--check", action="store_true", help="only check that the library loads")
+
+
+def _partners(text: str | None):
+    """--partners: None (the default range), () for 'none', or range(A, B + 1)."""
+    from assistbot.errors import UserError
+
+    if text is None:
+        return None
+    if text.strip().lower() == "none":
+        return ()
+    a, sep, b = text.partition(":")
+    if not sep or not a.strip().isdigit() or not b.strip().isdigit() or int(b) < int(a):
+        raise UserError("arguments", "--partners", f"expected A:B (population seeds, 0 <= A <= B) or none, got {text!r}")
+    return range(int(a), int(b) + 1)
 
 
 def run(args: argparse.Namespace) -> int:
@@ -35,13 +53,14 @@ def run(args: argparse.Namespace) -> int:
         return 0
     if args.scenes < 12:
         raise UserError("arguments", "--scenes", f"need at least 12 scenes, got {args.scenes}")
+    partners = _partners(args.partners)
     from assistbot.vision.pipeline import build_library
 
     def progress(i: int, n: int) -> None:
         if i % 20 == 0 or i == n:
             print(f"\rtemplates: {i}/{n} scenes", end="", file=sys.stderr, flush=True)
 
-    files = build_library(args.seed, args.scenes, args.out, progress)
+    files = build_library(args.seed, args.scenes, args.out, progress, partners=partners)
     print(file=sys.stderr)
     size = sum(f.stat().st_size for f in files)
     print(f"wrote {len(files)} files ({size / 1024:.0f} kB) to {files[0].parent}")

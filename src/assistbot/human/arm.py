@@ -89,6 +89,16 @@ SHOULDER_XY = DEFAULT_SHOULDER[:2].copy()
 TREMOR_DIRECTION = np.array([0.0, 0.6, 0.8])
 
 
+def own_point(p, shoulder: np.ndarray, reach: float) -> np.ndarray:
+    """A point named for the default person (where it holds things out, rests its hand) as the person
+    with this right ``shoulder`` (world) and ``reach`` has it: the same place relative to the shoulder,
+    in proportion to the reach."""
+    p = np.asarray(p, float)
+    if reach == DEFAULT_REACH and np.array_equal(shoulder, DEFAULT_SHOULDER):
+        return p       # the default person: exactly the point named
+    return shoulder + (p - DEFAULT_SHOULDER) * (reach / DEFAULT_REACH)
+
+
 def rot_z(angle: float) -> np.ndarray:
     c, s = np.cos(angle), np.sin(angle)
     return np.array([[c, -s, 0], [s, c, 0], [0, 0, 1]])
@@ -219,12 +229,8 @@ class HumanArm:
         return d.site_xpos[sid].copy(), d.site_xmat[sid].reshape(3, 3).copy()
 
     def own_point(self, p) -> np.ndarray:
-        """A point named for the default person (where it holds things out, rests its hand) as this person
-        has it: the same place relative to the shoulder, in proportion to the reach."""
-        p = np.asarray(p, float)
-        if self.reach == DEFAULT_REACH and np.array_equal(self.shoulder, DEFAULT_SHOULDER):
-            return p       # the default person: exactly the point named
-        return self.shoulder + (p - DEFAULT_SHOULDER) * (self.reach / DEFAULT_REACH)
+        """A point named for the default person as this person has it (`own_point`)."""
+        return own_point(p, self.shoulder, self.reach)
 
     def tremor(self, t: float) -> np.ndarray:
         """The tremor's displacement of the hand at time t (world, m)."""

@@ -6,6 +6,7 @@ Used by benchmarks/vision_accuracy.py and by the tests.  Labels come from `scene
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -13,6 +14,7 @@ import numpy as np
 from assistbot import catalogue
 from assistbot.vision.library import KINDS
 from assistbot.vision.pipeline import LOW_CONFIDENCE
+from assistbot.vision.scenes import POSE_TOLERANCE
 
 
 @dataclass
@@ -30,6 +32,8 @@ class Score:
     process_cpu_ms: list[float] = field(default_factory=list)
     process_warm_ms: list[float] = field(default_factory=list)   # the same pair processed again at once
     frames: int = 0
+    unposable: int = 0          # scenes the person's body could not pose (`POSE_TOLERANCE`): not scored
+    people: int = 1             # how many different people the scenes showed
 
     def add(self, percept, labels, visible: dict[str, bool]) -> None:
         self.frames += 1
@@ -92,7 +96,9 @@ class Score:
         return M
 
     def report(self) -> str:
-        lines = [f"frames (stereo pairs): {self.frames}"]
+        lines = [f"frames (stereo pairs): {self.frames} of {self.people} {'person' if self.people == 1 else 'people'}"
+                 + (f"; {self.unposable} more scenes the body could not pose (hand > {POSE_TOLERANCE * 100:.0f} cm off), not scored"
+                    if self.unposable else "")]
         for kind in KINDS:
             M = self.confusion(kind)
             cl = KINDS[kind]
@@ -172,28 +178,42 @@ def visibility(segs, cams=None, hand=None, min_px: int = 25, hand_px: int = 25) 
     return vis
 
 
-def run(n: int, seed: int = 0, purpose: str = "bench", progress=None, root=None) -> Score:
+def run(n: int, seed: int = 0, purpose: str = "bench", progress=None, root=None,
+        partners: Sequence[int] | None = None) -> Score:
+    """Score vision on ``n`` scenes of the ``purpose`` seed stream: of the default person, or (``partners``,
+    population seeds) each of a person drawn from them, built in the physics (`human.population`)."""
+    from assistbot.human.population import sample_partner
     from assistbot.vision.capture import StereoCapture
     from assistbot.vision.pipeline import Vision
     from assistbot.vision.scenes import SceneSampler, pose
     from assistbot.world import PAPER_ARRANGEMENTS, build_world
 
     vision = Vision(root)
-    world = build_world(PAPER_ARRANGEMENTS["fig3"], seed)
-    sampler = SceneSampler(seed, purpose)
+    sampler = SceneSampler(seed, purpose, partners)
+    specs = [sampler.sample() for _ in range(n)]
     score = Score()
-    with StereoCapture(world.model) as cap:
-        for i in range(n):
-            lab = pose(world, sampler.sample())
-            f = cap.grab(world.data)
-            vis = visibility(cap.segmentation(world.data), f.cams, lab.hand_position)
-            percept = vision.perceive(f)
-            score.add(percept, lab, vis)
-            score.render_ms.append(f.render_ms)
-            score.process_ms.append(vision.timing.process_ms)
-            score.process_cpu_ms.append(vision.timing.process_cpu_ms)
-            vision.perceive(f)
-            score.process_warm_ms.append(vision.timing.process_ms)
-            if progress:
-                progress(i + 1, n)
+    people = sorted({s.partner for s in specs}, key=lambda p: -1 if p is None else p)
+    score.people = len(people)
+    done = 0
+    for person in people:   # one scene (and renderer) per person
+        body = None if person is None else sample_partner(person).body
+        world = build_world(PAPER_ARRANGEMENTS["fig3"], seed, body=body)
+        with StereoCapture(world.model) as cap:
+            for spec in (s for s in specs if s.partner == person):
+                done += 1
+                lab = pose(world, spec)
+                if lab.pose_miss > POSE_TOLERANCE:
+                    score.unposable += 1
+                    continue
+                f = cap.grab(world.data)
+                vis = visibility(cap.segmentation(world.data), f.cams, lab.hand_position)
+                percept = vision.perceive(f)
+                score.add(percept, lab, vis)
+                score.render_ms.append(f.render_ms)
+                score.process_ms.append(vision.timing.process_ms)
+                score.process_cpu_ms.append(vision.timing.process_cpu_ms)
+                vision.perceive(f)
+                score.process_warm_ms.append(vision.timing.process_ms)
+                if progress:
+                    progress(done, n)
     return score

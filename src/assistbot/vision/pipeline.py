@@ -285,28 +285,49 @@ class Vision:
 
 
 # ---------------------------------------------------------------------------- building the library
-def build_library(seed: int = 0, n_scenes: int = 3240, root=None, progress=None) -> list:
-    """Calibrate, render library scenes, and write prototypes + examples to assets/templates/."""
+#: the share of the library's scenes that show the default person; the others show people of the
+#: population's LIBRARY_SEEDS, so that the templates know bodies, seats and habits beside his
+LIBRARY_DEFAULT_SHARE = 0.3
+
+
+def build_library(seed: int = 0, n_scenes: int = 6480, root=None, progress=None, partners=None,
+                  default_share: float = LIBRARY_DEFAULT_SHARE) -> list:
+    """Calibrate, render library scenes, and write prototypes + examples to assets/templates/.
+
+    The scenes show the default person and (a ``1 - default_share`` of them) people drawn from
+    ``partners`` (population seeds; default `population.LIBRARY_SEEDS`; an empty sequence: the default
+    person only), each built in the physics."""
+    from assistbot.human.population import LIBRARY_SEEDS, sample_partner
     from assistbot.task import HAND_POSTURES
     from assistbot.vision.calibration import calibrate
     from assistbot.vision.capture import StereoCapture
-    from assistbot.vision.scenes import SceneSampler, pose
+    from assistbot.vision.scenes import POSE_TOLERANCE, SceneSampler, pose
     from assistbot.world import PAPER_ARRANGEMENTS, build_world
 
+    partners = LIBRARY_SEEDS if partners is None else partners
     cal = calibrate(seed)
-    world = build_world(PAPER_ARRANGEMENTS["fig3"], seed)
-    sampler = SceneSampler(seed, "library")
+    sampler = SceneSampler(seed, "library", partners or None, default_share)
+    specs = [sampler.sample(HAND_POSTURES[i % len(HAND_POSTURES)]) for i in range(n_scenes)]
+    people = sorted({s.partner for s in specs}, key=lambda p: -1 if p is None else p)
 
     def frames():
-        with StereoCapture(world.model) as cap:
-            for i in range(n_scenes):
-                lab = pose(world, sampler.sample(HAND_POSTURES[i % len(HAND_POSTURES)]))
-                yield cap.grab(world.data), lab
-                if progress:
-                    progress(i + 1, n_scenes)
+        done = 0
+        for person in people:   # one scene (and renderer) per person
+            world = build_world(PAPER_ARRANGEMENTS["fig3"], seed, body=None if person is None else sample_partner(person).body)
+            with StereoCapture(world.model) as cap:
+                for spec in (s for s in specs if s.partner == person):
+                    lab = pose(world, spec)
+                    done += 1
+                    if progress:
+                        progress(done, n_scenes)
+                    if lab.pose_miss > POSE_TOLERANCE:
+                        continue      # the body could not pose it: the labels would describe another hand
+                    yield cap.grab(world.data), lab
 
     clfs, cal = fit_library(cal, frames(), seed)
-    meta = {"seed": seed, "scenes": n_scenes, "examples": {k: len(c.y) for k, c in clfs.items()}}
+    meta = {"seed": seed, "scenes": n_scenes, "people": len(people), "default_share": default_share,
+            "partners": [min(partners), max(partners)] if partners else [],
+            "examples": {k: len(c.y) for k, c in clfs.items()}}
     return library.save(root or TEMPLATES, clfs, cal, meta)
 
 

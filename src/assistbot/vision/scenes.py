@@ -15,14 +15,17 @@ frame used to build templates is ever scored.
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from dataclasses import dataclass, field
+from functools import lru_cache
 
 import mujoco
 import numpy as np
 
 from assistbot import catalogue
-from assistbot.human.arm import ORIENT, SHOULDER_XY, grip_orientation, rot_y, rot_z
+from assistbot.human.arm import ORIENT, grip_orientation, own_point, rot_y, rot_z, shoulder_and_reach
 from assistbot.human.behaviours import GRASP_HEIGHT, HOLD_OUT, REST, TURN_LIFT, turn_roll
+from assistbot.human.ikmodel import arm_model
 from assistbot.task import HAND_POSTURES
 from assistbot.world import HAND_POSTURES as FINGER_POSTURES, HUMAN_ARM_JOINTS, HUMAN_HAND_JOINTS, layout
 from assistbot.world.arrangement import Arrangement, Placement
@@ -33,6 +36,9 @@ _PURPOSE = {"library": 1, "test": 2, "bench": 3, "calibrate": 4}
 _FINGERS = {"none": "open", "reach": "open", "grasp_ag": "ag", "grasp_sg": "sg", "open_palm_request": "request", "pointing": "point",
             "remove_stopper": "ag", "pour": "sg", "drink": "sg"}
 HAND_X_MAX = -0.03          # the human's grasp site never goes further toward the robot
+#: a posed scene whose hand stayed further than this (m) from where its posture puts it (an object out of
+#: this body's reach) is neither scored nor learnt from: its labels would describe a hand that is not there
+POSE_TOLERANCE = 0.02
 
 
 @dataclass
@@ -45,6 +51,7 @@ class SceneSpec:
     jitter: tuple[float, float, float] = (0.0, 0.0, 0.0)
     reach_fraction: float = 0.6
     robot_holds: str | None = None            # object placed in the robot's gripper (tests)
+    partner: int | None = None                # the person's population seed (None: the default person)
 
 
 @dataclass
@@ -58,6 +65,7 @@ class Labels:
     held_out: bool = False
     pointed_at: str | None = None
     directed_at: str | None = None
+    pose_miss: float = 0.0             # how far (m) the posed hand stayed off where the posture puts it
 
 
 def _random_position(rng, name: str, zone: str) -> tuple[float, float]:
@@ -72,8 +80,13 @@ def _random_position(rng, name: str, zone: str) -> tuple[float, float]:
 class SceneSampler:
     """Random labelled-scene specs from one seed stream (see module docstring)."""
 
-    def __init__(self, seed: int = 0, purpose: str = "bench") -> None:
+    def __init__(self, seed: int = 0, purpose: str = "bench", partners: Sequence[int] | None = None,
+                 default_share: float = 0.0) -> None:
         self.rng = np.random.default_rng([_PURPOSE[purpose], int(seed)])
+        #: each scene's person is drawn from these population seeds (None: always the default person), but
+        #: for a ``default_share`` of the scenes, which show the default person
+        self.partners = None if partners is None else tuple(int(p) for p in partners)
+        self.default_share = float(default_share)
 
     def arrangement(self) -> Arrangement:
         rng = self.rng
@@ -92,6 +105,15 @@ class SceneSampler:
         raise RuntimeError("could not draw a valid arrangement")
 
     def sample(self, posture: str | None = None) -> SceneSpec:
+        """A scene with ``posture`` (else a random one), its person drawn from ``partners`` if given."""
+        if self.partners is None:
+            return self._sample(posture)
+        partner = None if self.rng.random() < self.default_share else int(self.rng.choice(self.partners))
+        spec = self._sample(posture)
+        spec.partner = partner
+        return spec
+
+    def _sample(self, posture: str | None = None) -> SceneSpec:
         rng = self.rng
         posture = posture or str(rng.choice(HAND_POSTURES))
         if posture in ("remove_stopper", "pour", "drink"):
@@ -170,6 +192,36 @@ class SceneSampler:
 
 
 # ---------------------------------------------------------------------------- posing
+def _hold_out_habit(partner: int | None) -> np.ndarray:
+    """Where this partner habitually holds things out, relative to HOLD_OUT (the default person: nowhere else)."""
+    if partner is None:
+        return np.zeros(3)
+    from assistbot.human.population import sample_partner
+
+    p = sample_partner(partner)
+    return np.array([p.hold_out_dx, p.hold_out_dy, p.hold_out_dz])
+
+
+@lru_cache(maxsize=256)
+def _shoulder_and_reach(body) -> tuple[np.ndarray, float]:
+    return shoulder_and_reach(arm_model(body))
+
+
+class _Person:
+    """The posed person's own points: the behaviours' named points (HOLD_OUT, REST) and grip bearings as
+    this body has them (`human.arm.own_point`); the default person's exactly."""
+
+    def __init__(self, world) -> None:
+        self.shoulder, self.reach = _shoulder_and_reach(getattr(world, "human_body", None))
+        self.shoulder_xy = self.shoulder[:2].copy()
+
+    def point(self, p) -> np.ndarray:
+        return own_point(p, self.shoulder, self.reach)
+
+    def grip(self, kind: str, target) -> np.ndarray:
+        return grip_orientation(kind, target, self.shoulder_xy)
+
+
 def _qadr(world, joint: str) -> int:
     return int(world.model.jnt_qposadr[world.model.joint(joint).id])
 
@@ -218,10 +270,14 @@ def _turn(world, o: str, grip_at, R, fraction: float):
     return hand, Rr @ R
 
 
-def _set_arm(world, target, R) -> None:
+def _set_arm(world, target, R) -> float:
+    """Pose the arm with its grasp site at ``target`` (orientation R), as near as the body allows; returns
+    how far (m) the grasp site stayed off the target."""
     q = ik(world, "human_r_grasp", target, R, joints=HUMAN_ARM_JOINTS, iters=200)
     for j, v in q.items():
         world.data.qpos[_qadr(world, j)] = v
+    mujoco.mj_kinematics(world.model, world.data)
+    return float(np.linalg.norm(world.data.site_xpos[world.site_id["human_r_grasp"]] - np.asarray(target, float)))
 
 
 def _set_fingers(world, posture: str) -> None:
@@ -239,6 +295,10 @@ def pose(world, spec: SceneSpec) -> Labels:
     m, d = world.model, world.data
     world.arrangement = spec.arrangement
     world.reset()
+    person = _Person(world)
+    misses = [0.0]
+    hold_out = person.point(HOLD_OUT + _hold_out_habit(spec.partner))
+    rest = person.point(REST)
     d.qpos[_qadr(world, "robot_head_pan")] = spec.head[0]
     d.qpos[_qadr(world, "robot_head_tilt")] = spec.head[1]
     jit = np.asarray(spec.jitter)
@@ -253,19 +313,19 @@ def pose(world, spec: SceneSpec) -> Labels:
             base = base + np.array([0, 0, 0.07]) + np.array([jit[0], jit[1], 0])
         elif spec.variant == "held_out":
             # where the person's hold-out behaviour puts an object's base (measured in episodes: ~1 cm past HOLD_OUT)
-            base = np.array([HOLD_OUT[0] + 0.01, HOLD_OUT[1] + jit[1], 0.88]) + np.array([jit[0], 0, 0.5 * jit[2]])
+            base = np.array([hold_out[0] + 0.01 + jit[0], hold_out[1] + jit[1], 0.88 + (hold_out[2] - HOLD_OUT[2]) + 0.5 * jit[2]])
             held_out = True
         if spec.variant in ("lifted", "held_out"):
             _move_free(world, o, base)
             mujoco.mj_kinematics(m, d)
         h = GRASP_HEIGHT[(o, grip)]
         target = base + np.array([0, 0, h if upright else catalogue.height("glass") - h])
-        R = grip_orientation(grip, target)
+        R = person.grip(grip, target)
         if grip == "sg":
             target = target - 0.8 * catalogue.radius(o) * R[:, 2] * 0  # grasp site at the object's axis
         if spec.variant == "turning":
             target, R = _turn(world, o, target, R, spec.reach_fraction)
-        _set_arm(world, target, R)
+        misses.append(_set_arm(world, target, R))
         _set_fingers(world, grip)
         in_hand = o
     elif spec.posture == "reach":
@@ -273,56 +333,58 @@ def pose(world, spec: SceneSpec) -> Labels:
         base = d.xpos[world.body_id[o]].copy()
         grip = "ag" if spec.reach_fraction > 0.55 else "sg"
         goal = base + np.array([0, 0, GRASP_HEIGHT[(o, grip)] + 0.06])
-        p = REST + spec.reach_fraction * (goal - REST) + 0.5 * jit
+        p = rest + spec.reach_fraction * (goal - rest) + 0.5 * jit
         p[0] = min(p[0], HAND_X_MAX)
-        _set_arm(world, p, grip_orientation(grip, goal))
+        misses.append(_set_arm(world, p, person.grip(grip, goal)))
         _set_fingers(world, "open")
     elif spec.posture == "open_palm_request":
-        p = HOLD_OUT + jit
-        _set_arm(world, p, grip_orientation("request", p))
+        p = hold_out + jit
+        misses.append(_set_arm(world, p, person.grip("request", p)))
         _set_fingers(world, "request")
         held_out = True
     elif spec.posture == "pointing":
         o = spec.target
         tgt = d.xpos[world.body_id[o]].copy() + np.array([0, 0, 0.10])
-        hand0 = REST
+        hand0 = rest
         dvec = tgt - hand0
         dvec[2] = 0
         dist = 0.15 + 0.05 * (jit[0] / 0.03)
         p = tgt - dist * dvec / np.linalg.norm(dvec) + np.array([0, jit[1], 0.05 + jit[2]])
         p[0] = min(p[0], HAND_X_MAX)
-        _set_arm(world, p, grip_orientation("point", tgt))
+        misses.append(_set_arm(world, p, person.grip("point", tgt)))
         _set_fingers(world, "point")
     elif spec.posture == "remove_stopper":
         o = "bottle"
         if spec.variant == "held_out":   # held out toward the robot (which would hold it steady)
-            base = np.array([HOLD_OUT[0] - 0.04 + jit[0], HOLD_OUT[1] + jit[1], 0.85 + 0.5 * jit[2]])
+            base = np.array([hold_out[0] - 0.04 + jit[0], hold_out[1] + jit[1], 0.85 + (hold_out[2] - HOLD_OUT[2]) + 0.5 * jit[2]])
             _move_free(world, o, base)
             mujoco.mj_kinematics(m, d)
         s_ = d.site_xpos[world.site_id["stopper_grasp"]].copy()
         p = s_ + np.array([0, 0, 0.04 * spec.reach_fraction])       # pulling: 0-4 cm above the stopper
-        _set_arm(world, p, grip_orientation("ag", p))
+        misses.append(_set_arm(world, p, person.grip("ag", p)))
         _set_fingers(world, "ag")
     elif spec.posture == "pour":
-        _pose_pour(world, spec)
+        misses.append(_pose_pour(world, spec, person))
         in_hand = "bottle"
     elif spec.posture == "drink":
-        _pose_drink(world, spec)
+        misses.append(_pose_drink(world, spec))
         in_hand = "glass"
     elif spec.variant == "home":  # none: the hand about where the world starts it (a passive user's hand)
         mujoco.mj_kinematics(m, d)
         p = d.site_xpos[world.site_id["human_r_grasp"]] + jit * np.array([1.0, 1.0, 0.5])
-        _set_arm(world, p, d.site_xmat[world.site_id["human_r_grasp"]].reshape(3, 3).copy())
+        misses.append(_set_arm(world, p, d.site_xmat[world.site_id["human_r_grasp"]].reshape(3, 3).copy()))
         _set_fingers(world, "open")
     else:  # none: hand near the resting place
-        p = REST + jit * np.array([1.0, 1.0, 0.5])
-        _set_arm(world, p, grip_orientation("ag", p + np.array([0.2, 0, 0])))
+        p = rest + jit * np.array([1.0, 1.0, 0.5])
+        misses.append(_set_arm(world, p, person.grip("ag", p + np.array([0.2, 0, 0]))))
         _set_fingers(world, "open")
     if spec.robot_holds:
         _robot_hold(world, spec.robot_holds)
     mujoco.mj_forward(m, d)
     world.sync_liquid()
-    return labels_of(world, spec, in_hand, held_out)
+    lab = labels_of(world, spec, in_hand, held_out)
+    lab.pose_miss = max(misses)
+    return lab
 
 
 def _hold_in_hand(world, o: str, R0: np.ndarray, grasp: float) -> None:
@@ -336,13 +398,13 @@ def _hold_in_hand(world, o: str, R0: np.ndarray, grasp: float) -> None:
     _move_free(world, o, p - Ro @ np.array([0, 0, grasp]), Ro)
 
 
-def _pose_pour(world, spec: SceneSpec) -> None:
+def _pose_pour(world, spec: SceneSpec, person: _Person) -> float:
     """The open bottle in a side grip, rolled about the fingers' axis (100-130 deg) so that its
     mouth is over the glass (the glass beside the hand, toward the palm)."""
     d = world.data
     jit = np.asarray(spec.jitter)
     g = d.xpos[world.body_id["glass"]].copy()
-    b = g[:2] - SHOULDER_XY
+    b = g[:2] - person.shoulder_xy
     b = np.append(b / np.linalg.norm(b), 0.0)                     # fingers' bearing
     a = np.array([-b[1], b[0], 0.0])                              # toward the palm (the midline side)
     theta = np.radians(100 + 30 * spec.reach_fraction)
@@ -353,12 +415,13 @@ def _pose_pour(world, spec: SceneSpec) -> None:
     base = mouth - Rt @ np.array([0, 0, catalogue.height("bottle")])
     h = GRASP_HEIGHT[("bottle", "sg")]
     R0 = rot_z(float(np.arctan2(b[1], b[0]))) @ ORIENT["sg"]
-    _set_arm(world, base + Rt @ np.array([0, 0, h]), Rt @ R0)
+    miss = _set_arm(world, base + Rt @ np.array([0, 0, h]), Rt @ R0)
     _set_fingers(world, "sg")
     _hold_in_hand(world, "bottle", R0, h)
+    return miss
 
 
-def _pose_drink(world, spec: SceneSpec) -> None:
+def _pose_drink(world, spec: SceneSpec) -> float:
     """The glass in a side grip at the mouth, tilted toward the face (0.3-1.4 rad)."""
     jit = np.asarray(spec.jitter)
     mouth = world.site_pos("human_mouth")
@@ -369,9 +432,10 @@ def _pose_drink(world, spec: SceneSpec) -> None:
     lip = np.array([0, 0, catalogue.height("glass") - h]) + np.array([-layout.GLASS_INNER_RADIUS, 0, 0])
     away = 0.04 * (1 + jit[0] / 0.03)
     p = mouth + np.array([0.015 + away, jit[1], -0.015 - 0.5 * away]) - Rg @ lip
-    _set_arm(world, p, Rg @ Rc)
+    miss = _set_arm(world, p, Rg @ Rc)
     _set_fingers(world, "sg")
     _hold_in_hand(world, "glass", Rc, h)
+    return miss
 
 
 def _robot_hold(world, o: str) -> None:
