@@ -182,24 +182,18 @@ def run(n: int, seed: int = 0, purpose: str = "bench", progress=None, root=None,
         partners: Sequence[int] | None = None) -> Score:
     """Score vision on ``n`` scenes of the ``purpose`` seed stream: of the default person, or (``partners``,
     population seeds) each of a person drawn from them, built in the physics (`human.population`)."""
-    from assistbot.human.population import sample_partner
     from assistbot.vision.capture import StereoCapture
     from assistbot.vision.pipeline import Vision
-    from assistbot.vision.scenes import SceneSampler, pose
-    from assistbot.world import PAPER_ARRANGEMENTS, build_world
+    from assistbot.vision.scenes import SceneSampler, by_person, pose
 
     vision = Vision(root)
     sampler = SceneSampler(seed, purpose, partners)
     specs = [sampler.sample() for _ in range(n)]
-    score = Score()
-    people = sorted({s.partner for s in specs}, key=lambda p: -1 if p is None else p)
-    score.people = len(people)
+    score = Score(people=len({s.partner for s in specs}))
     done = 0
-    for person in people:   # one scene (and renderer) per person
-        body = None if person is None else sample_partner(person).body
-        world = build_world(PAPER_ARRANGEMENTS["fig3"], seed, body=body)
+    for world, group in by_person(specs, seed):
         with StereoCapture(world.model) as cap:
-            for spec in (s for s in specs if s.partner == person):
+            for spec in group:
                 done += 1
                 lab = pose(world, spec)
                 if lab.pose_miss > POSE_TOLERANCE:

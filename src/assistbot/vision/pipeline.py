@@ -297,25 +297,23 @@ def build_library(seed: int = 0, n_scenes: int = 6480, root=None, progress=None,
     The scenes show the default person and (a ``1 - default_share`` of them) people drawn from
     ``partners`` (population seeds; default `population.LIBRARY_SEEDS`; an empty sequence: the default
     person only), each built in the physics."""
-    from assistbot.human.population import LIBRARY_SEEDS, sample_partner
+    from assistbot.human.population import LIBRARY_SEEDS
     from assistbot.task import HAND_POSTURES
     from assistbot.vision.calibration import calibrate
     from assistbot.vision.capture import StereoCapture
-    from assistbot.vision.scenes import POSE_TOLERANCE, SceneSampler, pose
-    from assistbot.world import PAPER_ARRANGEMENTS, build_world
+    from assistbot.vision.scenes import POSE_TOLERANCE, SceneSampler, by_person, pose
 
     partners = LIBRARY_SEEDS if partners is None else partners
     cal = calibrate(seed)
     sampler = SceneSampler(seed, "library", partners or None, default_share)
     specs = [sampler.sample(HAND_POSTURES[i % len(HAND_POSTURES)]) for i in range(n_scenes)]
-    people = sorted({s.partner for s in specs}, key=lambda p: -1 if p is None else p)
+    people = {s.partner for s in specs}
 
     def frames():
         done = 0
-        for person in people:   # one scene (and renderer) per person
-            world = build_world(PAPER_ARRANGEMENTS["fig3"], seed, body=None if person is None else sample_partner(person).body)
+        for world, group in by_person(specs, seed):
             with StereoCapture(world.model) as cap:
-                for spec in (s for s in specs if s.partner == person):
+                for spec in group:
                     lab = pose(world, spec)
                     done += 1
                     if progress:

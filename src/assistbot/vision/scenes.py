@@ -15,7 +15,7 @@ frame used to build templates is ever scored.
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+from collections.abc import Iterator, Sequence
 from dataclasses import dataclass, field
 from functools import lru_cache
 
@@ -189,6 +189,17 @@ class SceneSampler:
             variant = str(self.rng.choice(["table", "lifted", "held_out"])) if st != "inverted" else _inverted_grip(self.rng, posture)
         jitter = tuple(float(v) for v in self.rng.uniform(-0.03, 0.03, 3))
         return SceneSpec(new, head, posture, o, variant, jitter, float(self.rng.uniform(0.35, 0.75)))
+
+
+def by_person(specs: Sequence[SceneSpec], seed: int = 0) -> Iterator[tuple[object, list[SceneSpec]]]:
+    """The specs grouped by the person they show, each group with a world of that person (built in the
+    physics, `human.population`): one world, and one renderer for it, per person rather than per scene."""
+    from assistbot.human.population import sample_partner
+    from assistbot.world import PAPER_ARRANGEMENTS, build_world
+
+    for person in sorted({s.partner for s in specs}, key=lambda p: -1 if p is None else p):
+        body = None if person is None else sample_partner(person).body
+        yield build_world(PAPER_ARRANGEMENTS["fig3"], seed, body=body), [s for s in specs if s.partner == person]
 
 
 # ---------------------------------------------------------------------------- posing
