@@ -1,10 +1,12 @@
 """`assistbot templates`: calibrate the colours and build the vision template library in assets/templates/.
 
 Renders labelled scenes (the "library" seed stream: never used for scoring) from the head
-cameras over random arrangements, object positions, hand postures and head angles, 30 % of
-them with the default person and the rest with people of the population's library seeds (0-999;
-experiments on unseen partners use seeds from 1000), and writes small prototype PNGs, index.json
-(classes, prototypes, labelled feature examples) and calibration.json.  Deterministic for a seed: the same seed rewrites identical files.
+cameras over random arrangements, object positions, hand postures and head angles, and writes
+small prototype PNGs, index.json (classes, prototypes, labelled feature examples) and
+calibration.json.  Deterministic for a seed: the same seed rewrites identical files.
+The scenes show the default person; with --partners A:B, 70 % of them show people of those
+population seeds instead (the library seeds are 0-999; experiments on unseen partners use
+seeds from 1000). Scenes whose hand the body cannot pose are skipped.
 With --check it only loads the library (exit 2 with a message if it is missing).
 """
 
@@ -21,20 +23,18 @@ ORDER = 40
 
 def add_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument("--seed", type=int, default=0, help="library seed (default 0)")
-    p.add_argument("--scenes", type=int, default=6480, help="labelled scenes to render (default 6480, 720 per hand posture)")
+    p.add_argument("--scenes", type=int, default=3240, help="labelled scenes to render (default 3240, 360 per hand posture)")
     p.add_argument("--out", type=Path, default=None, help="output folder (default: the package's assistbot/assets/templates)")
-    p.add_argument("--partners", default=None, metavar="A:B|none",
-                   help="population seeds whose people most scenes show (default: population.LIBRARY_SEEDS, 0:999); "
-                        "none: the default person only")
+    p.add_argument("--partners", default="none", metavar="A:B|none",
+                   help="population seeds whose people 70 %% of the scenes show (population.LIBRARY_SEEDS is 0:999); "
+                        "default none: the default person only, as the shipped library")
     p.add_argument("--check", action="store_true", help="only check that the library loads")
 
 
-def _partners(text: str | None):
-    """--partners: None (the default range), () for 'none', or range(A, B + 1)."""
+def _partners(text: str):
+    """--partners: () for 'none', or range(A, B + 1)."""
     from assistbot.errors import UserError
 
-    if text is None:
-        return None
     if text.strip().lower() == "none":
         return ()
     a, sep, b = text.partition(":")

@@ -48,7 +48,7 @@ TREMOR_FREQUENCY_RANGE = (4.0, 8.0)
 DROP_CHANCE_MAX = 0.10
 #: how often each impairment occurs in the population
 P_TREMOR, P_ROM, P_WEAK, P_HESITANT = 0.4, 0.4, 0.3, 0.3
-#: the people the vision template library is built from (`assistbot templates`): seeds 0-999. Experiments on
+#: the people a vision template library may be built from (`assistbot templates --partners 0:999`). Experiments on
 #: partners the robot has never met draw from 1000 on (`make partners`: 1000-1099), so nothing the robot
 #: knows was built from them.
 LIBRARY_SEEDS = range(0, 1000)

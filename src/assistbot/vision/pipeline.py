@@ -285,25 +285,24 @@ class Vision:
 
 
 # ---------------------------------------------------------------------------- building the library
-#: the share of the library's scenes that show the default person; the others show people of the
-#: population's LIBRARY_SEEDS, so that the templates know bodies, seats and habits beside his
+#: the share of a population library's scenes that show the default person; the others show people of
+#: the given population seeds, so that the templates know bodies, seats and habits beside his
 LIBRARY_DEFAULT_SHARE = 0.3
 
 
-def build_library(seed: int = 0, n_scenes: int = 6480, root=None, progress=None, partners=None,
+def build_library(seed: int = 0, n_scenes: int = 3240, root=None, progress=None, partners=(),
                   default_share: float = LIBRARY_DEFAULT_SHARE) -> list:
     """Calibrate, render library scenes, and write prototypes + examples to assets/templates/.
 
-    The scenes show the default person and (a ``1 - default_share`` of them) people drawn from
-    ``partners`` (population seeds; default `population.LIBRARY_SEEDS`; an empty sequence: the default
-    person only), each built in the physics."""
-    from assistbot.human.population import LIBRARY_SEEDS
+    The scenes show the default person, or with ``partners`` (population seeds, e.g.
+    `population.LIBRARY_SEEDS`) a ``1 - default_share`` of them people drawn from those, each built
+    in the physics."""
     from assistbot.task import HAND_POSTURES
     from assistbot.vision.calibration import calibrate
     from assistbot.vision.capture import StereoCapture
     from assistbot.vision.scenes import POSE_TOLERANCE, SceneSampler, by_person, pose
 
-    partners = LIBRARY_SEEDS if partners is None else partners
+    partners = tuple(partners)
     cal = calibrate(seed)
     sampler = SceneSampler(seed, "library", partners or None, default_share)
     specs = [sampler.sample(HAND_POSTURES[i % len(HAND_POSTURES)]) for i in range(n_scenes)]
