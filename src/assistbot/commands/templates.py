@@ -6,7 +6,7 @@ small prototype PNGs, index.json (classes, prototypes, labelled feature examples
 calibration.json.  Deterministic for a seed: the same seed rewrites identical files.
 The scenes show the default person; with --partners A:B, 70 % of them show people of those
 population seeds instead (the library seeds are 0-999; experiments on unseen partners use
-seeds from 1000). Scenes whose hand the body cannot pose are skipped.
+seeds from 1000); their scenes that a body cannot pose (out of its reach) are skipped.
 With --check it only loads the library (exit 2 with a message if it is missing).
 """
 

@@ -317,14 +317,16 @@ def build_library(seed: int = 0, n_scenes: int = 3240, root=None, progress=None,
                     done += 1
                     if progress:
                         progress(done, n_scenes)
-                    if lab.pose_miss > POSE_TOLERANCE:
-                        continue      # the body could not pose it: the labels would describe another hand
+                    if spec.partner is not None and lab.pose_miss > POSE_TOLERANCE:
+                        # another body could not pose it (out of that person's reach): the labels would
+                        # describe a hand that is not there. The default person's scenes are his own postures.
+                        continue
                     yield cap.grab(world.data), lab
 
     clfs, cal = fit_library(cal, frames(), seed)
-    meta = {"seed": seed, "scenes": n_scenes, "people": len(people), "default_share": default_share,
-            "partners": [min(partners), max(partners)] if partners else [],
-            "examples": {k: len(c.y) for k, c in clfs.items()}}
+    meta = {"seed": seed, "scenes": n_scenes, "examples": {k: len(c.y) for k, c in clfs.items()}}
+    if partners:
+        meta.update(people=len(people), default_share=default_share, partners=[min(partners), max(partners)])
     return library.save(root or TEMPLATES, clfs, cal, meta)
 
 
