@@ -34,7 +34,8 @@ UNSEEN_GOALS = "goals on unseen partners: hand posture >= 95%, object state >= 9
 def _seeds(text: str) -> range:
     a, sep, b = text.partition(":")
     if not sep or not a.strip().isdigit() or not b.strip().isdigit() or int(b) < int(a):
-        raise SystemExit(f"vision_accuracy: --partners: expected A:B (population seeds, A <= B), got {text!r}")
+        print(f"vision_accuracy: --partners: expected A:B (population seeds, A <= B), got {text!r}", file=sys.stderr)
+        raise SystemExit(2)
     return range(int(a), int(b) + 1)
 
 
