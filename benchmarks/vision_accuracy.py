@@ -32,11 +32,14 @@ UNSEEN_GOALS = "goals on unseen partners: hand posture >= 95%, object state >= 9
 
 
 def _seeds(text: str) -> range:
-    a, sep, b = text.partition(":")
-    if not sep or not a.strip().isdigit() or not b.strip().isdigit() or int(b) < int(a):
-        print(f"vision_accuracy: --partners: expected A:B (population seeds, A <= B), got {text!r}", file=sys.stderr)
-        raise SystemExit(2)
-    return range(int(a), int(b) + 1)
+    from assistbot.errors import UserError
+    from assistbot.human.population import parse_seed_range
+
+    try:
+        return parse_seed_range(text, "vision_accuracy", "--partners")
+    except UserError as exc:
+        print(exc, file=sys.stderr)
+        raise SystemExit(2) from None
 
 
 def _side_by_side(default, unseen, label: str) -> str:

@@ -32,15 +32,16 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
 
 
 def _partners(text: str):
-    """--partners: () for 'none', or range(A, B + 1)."""
+    """--partners: () for 'none', or the population seeds A:B."""
     from assistbot.errors import UserError
+    from assistbot.human.population import parse_seed_range
 
     if text.strip().lower() == "none":
         return ()
-    a, sep, b = text.partition(":")
-    if not sep or not a.strip().isdigit() or not b.strip().isdigit() or int(b) < int(a):
-        raise UserError("arguments", "--partners", f"expected A:B (population seeds, 0 <= A <= B) or none, got {text!r}")
-    return range(int(a), int(b) + 1)
+    try:
+        return parse_seed_range(text, "arguments", "--partners")
+    except UserError as exc:
+        raise UserError(exc.where, exc.key, f"{exc.message}; or none (the default person only)") from None
 
 
 def run(args: argparse.Namespace) -> int:

@@ -145,6 +145,14 @@ def sample_partner(seed: int) -> Partner:
     )
 
 
+def parse_seed_range(text: str, where: str, key: str) -> range:
+    """``A:B``, population seeds A to B inclusive (0 <= A <= B); anything else is a `UserError` naming ``key``."""
+    a, sep, b = str(text).partition(":")
+    if not sep or not a.strip().isdigit() or not b.strip().isdigit() or int(b) < int(a):
+        raise UserError(where, key, f"expected A:B (population seeds, 0 <= A <= B), got {text!r}")
+    return range(int(a), int(b) + 1)
+
+
 def parse_partner(value: Any, where: str, key: str = "human.partner") -> Partner:
     """A scenario's ``human.partner``: an integer seed of the population, or a mapping of attributes (LIMITS),
     optionally with ``seed`` to start from that sampled person. Mistakes raise `UserError` naming the key."""
