@@ -14,6 +14,8 @@ item and parameter path, and recorded for paper-style plots. Its fields are
 1-D or 2-D (``shape``); they couple through items (eq. 4) or continuously
 (a Gaussian kernel over a source's whole output, projected between 1-D and
 2-D by sum, max or expansion), as the DFT toolkits cedar and COSIVINA do.
+Fields may keep a memory trace (a slowly built preshape) and item couplings
+may learn their table by a gated Hebbian rule (`MemorySpec`, `LearnSpec`).
 Nothing here knows robots.
 """
 
@@ -21,7 +23,15 @@ from assistbot.fields.errors import FieldError
 from assistbot.fields.network import Network, format_table
 from assistbot.fields.plot import plot_history
 from assistbot.fields.record import Recorder
-from assistbot.fields.spec import ContinuousCouplingSpec, CouplingSpec, FieldSpec, KernelSpec, NetworkSpec
+from assistbot.fields.spec import (
+    ContinuousCouplingSpec,
+    CouplingSpec,
+    FieldSpec,
+    KernelSpec,
+    LearnSpec,
+    MemorySpec,
+    NetworkSpec,
+)
 
 __all__ = [
     "ContinuousCouplingSpec",
@@ -29,6 +39,8 @@ __all__ = [
     "FieldError",
     "FieldSpec",
     "KernelSpec",
+    "LearnSpec",
+    "MemorySpec",
     "Network",
     "NetworkSpec",
     "Recorder",

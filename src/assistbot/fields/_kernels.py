@@ -215,6 +215,52 @@ def convolve_plane(rv, bv, ny, nx, ty, tx, circular, pad, tmp):
     conv_rows(rv, tmp, ty, ny, nx)
 
 
+@inlined
+def learned_drive(f, item_pos, d, w, l_src, l_ns, l_tgt, l_nt, l_k, l_ptr):
+    """d (target items) += k W c (source items) for each learning coupling, W its weights now."""
+    for L in range(l_src.size):
+        s0, ns, t0, p0 = l_src[L], l_ns[L], l_tgt[L], l_ptr[L]
+        for mi in range(l_nt[L]):
+            acc = 0.0
+            for j in range(ns):
+                acc += w[p0 + mi * ns + j] * f[item_pos[s0 + j]]
+            d[t0 + mi] += l_k[L] * acc
+
+
+@inlined
+def build_traces(f, m, offsets, mem_fields, mem_build, mem_decay, mem_thr):
+    """Each traced field active somewhere: m toward f where f > threshold, toward 0 elsewhere."""
+    for fi in range(offsets.size - 1):
+        if not mem_fields[fi]:
+            continue
+        o, e = offsets[fi], offsets[fi + 1]
+        active = False
+        for i in range(o, e):
+            if f[i] > mem_thr[i]:
+                active = True
+                break
+        if active:
+            for i in range(o, e):
+                if f[i] > mem_thr[i]:
+                    m[i] += mem_build[i] * (f[i] - m[i])
+                else:
+                    m[i] += -mem_decay[i] * m[i]
+
+
+@inlined
+def learn(f, item_pos, w, dt, l_src, l_ns, l_tgt, l_nt, l_gate, l_rate, l_decay, l_lo, l_hi, l_ptr):
+    """w += dt g c_pre (rate c_post - decay w), clipped to the bounds (see compiled)."""
+    for L in range(l_src.size):
+        s0, ns, t0, p0 = l_src[L], l_ns[L], l_tgt[L], l_ptr[L]
+        g = 1.0 if l_gate[L] < 0 else f[item_pos[l_gate[L]]]
+        for mi in range(l_nt[L]):
+            post = f[item_pos[t0 + mi]]
+            for j in range(ns):
+                q = p0 + mi * ns + j
+                v = w[q] + dt * g * f[item_pos[s0 + j]] * (l_rate[L] * post - l_decay[L] * w[q])
+                w[q] = l_lo[L] if v < l_lo[L] else (l_hi[L] if v > l_hi[L] else v)
+
+
 @jit
 def run(n_steps, u, S, S_ext, stim_item, xi, use_noise,
         dt_tau, h, beta, u0, noise_scale,
@@ -222,7 +268,9 @@ def run(n_steps, u, S, S_ext, stim_item, xi, use_noise,
         g_field, g_circular, g_ty_off, g_tx_off, taps_y, taps_x, g_term_ptr, t_src, t_kind, t_w,
         item_pos, K_indptr, K_indices, K_data,
         R_indptr, R_indices, R_data,
-        f, buf, proj, pad, tmp, rate, d, tbuf):
+        f, buf, proj, pad, tmp, rate, d, tbuf,
+        m, w, use_mem, mem_fields, mem_amp, mem_build, mem_decay, mem_thr,
+        dt, l_src, l_ns, l_tgt, l_nt, l_gate, l_k, l_rate, l_decay, l_lo, l_hi, l_ptr):
     P = u.size
     for step in range(n_steps):
         sigmoid(u, beta, u0, f, tbuf)
@@ -255,18 +303,25 @@ def run(n_steps, u, S, S_ext, stim_item, xi, use_noise,
                 gather(g_term_ptr[g], g_term_ptr[g + 1], offsets, grid, t_src, t_kind, t_w, f, bv, ny, nx, proj)
                 convolve_plane(rate[o:o + n], bv, ny, nx, taps_y[g_ty_off[g]:g_ty_off[g + 1]], tx, g_circular[g],
                                pad, tmp)
-        for m in range(d.size):
-            acc = stim_item[m]
-            for q in range(K_indptr[m], K_indptr[m + 1]):
+        for m_ in range(d.size):
+            acc = stim_item[m_]
+            for q in range(K_indptr[m_], K_indptr[m_ + 1]):
                 acc += K_data[q] * f[item_pos[K_indices[q]]]
-            d[m] = acc
-        for p in range(P):
-            S[p] = S_ext[p]
-        for m in range(d.size):
-            dm = d[m]
+            d[m_] = acc
+        learned_drive(f, item_pos, d, w, l_src, l_ns, l_tgt, l_nt, l_k, l_ptr)
+        if use_mem:
+            for p in range(P):
+                S[p] = S_ext[p] + mem_amp[p] * m[p]
+            build_traces(f, m, offsets, mem_fields, mem_build, mem_decay, mem_thr)
+        else:
+            for p in range(P):
+                S[p] = S_ext[p]
+        for m_ in range(d.size):
+            dm = d[m_]
             if dm != 0.0:
-                for q in range(R_indptr[m], R_indptr[m + 1]):
+                for q in range(R_indptr[m_], R_indptr[m_ + 1]):
                     S[R_indices[q]] += dm * R_data[q]
+        learn(f, item_pos, w, dt, l_src, l_ns, l_tgt, l_nt, l_gate, l_rate, l_decay, l_lo, l_hi, l_ptr)
         if use_noise:
             for p in range(P):
                 u[p] += dt_tau[p] * (rate[p] + S[p]) + noise_scale[p] * xi[step, p]

@@ -20,6 +20,16 @@ vector of I items. Per step:
 - Euler: u += dt/tau (-u + S + L + C + h) (+ noise/tau sqrt(dt) xi), C the
   continuous couplings' input.
 
+Learning elements add two pieces of state beside u, both stepped by the same
+explicit Euler step from the outputs f of that step:
+
+- memory traces m (one per position, zero for fields without one): S gains
+  amplitude * m (the trace before this step's update), then m moves toward f
+  where f > threshold and toward 0 elsewhere, in fields active somewhere;
+- learned tables w (one flat vector, coupling after coupling, each row-major
+  target x source): their couplings are left out of K; their drive k w c_pre
+  joins d, then w += dt g c_pre (rate c_post - decay w), clipped to bounds.
+
 The Gaussian taps are truncated where exp(-d^2/2 sigma^2) < TRUNCATION (or
 at a kernel's ``cutoff``), so both stepping paths compute the same sums; the
 untruncated reference lives in the tests (scipy solve_ivp on the dense
@@ -193,6 +203,8 @@ class Compiled:
     grid: np.ndarray  # (F, 2) rows and columns of each field: (1, size) in 1-D
     groups: list[ConvGroup]  # lateral kernels and continuous couplings, for the compiled path
     continuous_terms: list[tuple[ConvGroup, ConvTerm]]  # continuous couplings and 2-D lateral kernels, for numpy
+    memory: "MemoryArrays"
+    learning: "LearningArrays"
 
     @property
     def size(self) -> int:
@@ -206,6 +218,89 @@ class Compiled:
     def slice(self, name: str) -> slice:
         i = self.names.index(name)
         return slice(int(self.offsets[i]), int(self.offsets[i + 1]))
+
+
+@dataclass
+class MemoryArrays:
+    """Memory traces per position: zero amplitude and rates where a field has none."""
+
+    fields: np.ndarray     # (F,) whether the field has a trace
+    amplitude: np.ndarray  # (P,)
+    build: np.ndarray      # (P,) dt / tau_build
+    decay: np.ndarray      # (P,) dt / tau_decay
+    threshold: np.ndarray  # (P,)
+
+    @property
+    def any(self) -> bool:
+        return bool(self.fields.any())
+
+
+@dataclass
+class LearningArrays:
+    """The learning item couplings, one entry each, and their priors as one flat weight vector."""
+
+    names: list[str]
+    source: np.ndarray  # (L,) first item of the source field in the item vector
+    n_source: np.ndarray
+    target: np.ndarray  # (L,) first item of the target field
+    n_target: np.ndarray
+    gate: np.ndarray    # (L,) item index of the gate, -1 for none
+    k: np.ndarray
+    rate: np.ndarray
+    decay: np.ndarray
+    low: np.ndarray
+    high: np.ndarray
+    ptr: np.ndarray     # (L+1,) start of each table in the flat weights
+    prior: np.ndarray   # flat weights as the spec gives them
+
+    def table(self, w: np.ndarray, i: int) -> np.ndarray:
+        """Coupling i's weights in ``w`` as a (target items, source items) view."""
+        return w[self.ptr[i]:self.ptr[i + 1]].reshape(int(self.n_target[i]), int(self.n_source[i]))
+
+
+def _memory_arrays(spec: NetworkSpec, fs: list[FieldSpec], sizes: np.ndarray) -> MemoryArrays:
+    def per_position(value) -> np.ndarray:
+        return np.repeat(np.array([value(f.memory) if f.memory is not None else 0.0 for f in fs], dtype=float), sizes)
+
+    return MemoryArrays(
+        fields=np.array([f.memory is not None for f in fs], dtype=np.bool_),
+        amplitude=per_position(lambda m: m.amplitude),
+        build=per_position(lambda m: spec.dt / m.tau_build),
+        decay=per_position(lambda m: spec.dt / m.tau_decay),
+        threshold=per_position(lambda m: m.threshold),
+    )
+
+
+def _learning_arrays(spec: NetworkSpec, item_off: dict[str, int]) -> LearningArrays:
+    from assistbot.fields.spec import gate_item
+
+    learned = [c for c in spec.couplings if c.learn is not None]
+    rules = [c.learn for c in learned if c.learn is not None]
+    priors = [c.matrix(spec.fields).ravel() for c in learned]
+    gates = []
+    for c, rule in zip(learned, rules):
+        if rule.gate is None:
+            gates.append(-1)
+        else:
+            field, item = gate_item(c.where, rule.gate, spec.fields)
+            gates.append(item_off[field] + spec.fields[field].items.index(item))
+    ints = lambda vals: np.array(vals, dtype=np.int64)  # noqa: E731
+    floats = lambda vals: np.array(vals, dtype=float)  # noqa: E731
+    return LearningArrays(
+        names=[c.name for c in learned],
+        source=ints([item_off[c.source] for c in learned]),
+        n_source=ints([len(spec.fields[c.source].items) for c in learned]),
+        target=ints([item_off[c.target] for c in learned]),
+        n_target=ints([len(spec.fields[c.target].items) for c in learned]),
+        gate=ints(gates),
+        k=floats([c.k for c in learned]),
+        rate=floats([r.rate for r in rules]),
+        decay=floats([r.decay for r in rules]),
+        low=floats([r.bounds[0] for r in rules]),
+        high=floats([r.bounds[1] for r in rules]),
+        ptr=ints(np.concatenate([[0], np.cumsum([p.size for p in priors])])),
+        prior=np.concatenate(priors) if priors else np.zeros(0),
+    )
 
 
 def _gaussian(d: np.ndarray, sigma: float) -> np.ndarray:
@@ -258,6 +353,8 @@ def compile_spec(spec: NetworkSpec) -> Compiled:
 
     k_rows, k_cols, k_vals = [], [], []
     for c in spec.couplings:
+        if c.learn is not None:
+            continue  # its weights change as it runs: stepped apart from K
         a = c.matrix(spec.fields)
         m, j = np.nonzero(a)
         k_rows.append(m + item_off[c.target])
@@ -293,4 +390,6 @@ def compile_spec(spec: NetworkSpec) -> Compiled:
         grid=np.array([f.grid for f in fs], dtype=np.int64).reshape(-1, 2),
         groups=groups,
         continuous_terms=continuous_terms,
+        memory=_memory_arrays(spec, fs, sizes),
+        learning=_learning_arrays(spec, item_off),
     )

@@ -11,7 +11,7 @@ import numpy as np
 from assistbot.fields.compiled import Compiled, compile_spec, gaussian_half_width
 from assistbot.fields.errors import FieldError
 from assistbot.fields.record import Recorder
-from assistbot.fields.spec import FieldSpec, KernelSpec, NetworkSpec
+from assistbot.fields.spec import MEMORY_KEYS, FieldSpec, KernelSpec, NetworkSpec
 from assistbot.fields.stepping import ContinuousInput, make_stepper
 
 BACKENDS = ("auto", "numpy", "numba")
@@ -28,6 +28,8 @@ class Network:
     t: float              # s since the start (or the last reset)
     steps: int            # Euler steps since then
     state_u: np.ndarray   # every field's activation, concatenated
+    state_m: np.ndarray   # every field's memory trace, concatenated (zero where a field has none)
+    state_w: np.ndarray   # the learning couplings' weights, one table after another, row-major
 
     def __init__(self, spec: NetworkSpec, backend: str = "auto", seed: int | None = 0) -> None:
         if backend not in BACKENDS:
@@ -63,7 +65,7 @@ class Network:
             raise FieldError(f"{path}: {exc.where}", exc.key, exc.message) from None
 
     def _compile(self, fresh: bool) -> None:
-        old = None if fresh else (self._c, self.state_u)
+        old = None if fresh else (self._c, self.state_u, self.state_m, self.state_w)
         self._c: Compiled = compile_spec(self.spec)
         self._stepper = make_stepper(self._c, self.backend_request)
         self._continuous_input: ContinuousInput | None = None
@@ -72,6 +74,8 @@ class Network:
         self._slices = {name: c.slice(name) for name in c.names}
         self._items_at = {name: self.spec.fields[name].item_indices for name in c.names}
         self.state_u = c.h.copy()
+        self.state_m = np.zeros(c.size)
+        self.state_w = c.learning.prior.copy()
         self._S = np.zeros(c.size)
         self._S_ext = np.zeros(c.size)
         self._stim_item = np.zeros(c.n_items)
@@ -81,10 +85,20 @@ class Network:
             self.steps = 0
         else:
             assert old is not None
-            old_c, old_u = old
+            old_c, old_u, old_m, old_w = old
             for name in c.names:
-                if name in old_c.names:
+                if name in old_c.names and old_c.slice(name) == c.slice(name):
                     self.state_u[c.slice(name)] = old_u[old_c.slice(name)]
+                    if c.memory.fields[c.names.index(name)]:
+                        self.state_m[c.slice(name)] = old_m[old_c.slice(name)]
+            # what was learnt survives a parameter change (kept within the bounds now in force)
+            L, old_L = c.learning, old_c.learning
+            for i, name in enumerate(L.names):
+                if name in old_L.names:
+                    j = old_L.names.index(name)
+                    before = old_L.table(old_w, j)
+                    if before.shape == L.table(self.state_w, i).shape:
+                        L.table(self.state_w, i)[:] = np.clip(before, L.low[i], L.high[i])
             for key, amp in getattr(self, "_item_stimuli", {}).items():
                 self._stim_item[self._item(*key)] = amp
         if fresh:
@@ -190,7 +204,7 @@ class Network:
             for r in self._recorders:
                 chunk = min(chunk, r.every - self.steps % r.every)
             xi = self.rng.standard_normal((chunk, c.size)) if c.has_noise else None
-            self._stepper.run(chunk, self.state_u, self._S, self._S_ext, self._stim_item, xi)
+            self._stepper.run(chunk, self.state_u, self._S, self._S_ext, self._stim_item, xi, self.state_m, self.state_w)
             remaining -= chunk
             self.steps += chunk
             self.t = self.steps * self.spec.dt
@@ -201,11 +215,17 @@ class Network:
         self.step(int(round(seconds / self.spec.dt)))
 
     def reset(self) -> None:
-        """Back to the resting level h everywhere, time 0, stimuli kept."""
+        """Back to the resting level h everywhere, time 0, stimuli kept; memory traces and learned weights
+        are kept too (what a network learnt outlives a trial: `forget` clears it)."""
         self.state_u[:] = self._c.h
         self._S[:] = 0.0
         self.t = 0.0
         self.steps = 0
+
+    def forget(self) -> None:
+        """Memory traces back to zero and learned tables back to their priors (the spec's tables)."""
+        self.state_m[:] = 0.0
+        self.state_w[:] = self._c.learning.prior
 
     def reset_field(self, field: str) -> None:
         """Put one field back to rest, e.g. to release a decision once it was carried out."""
@@ -244,6 +264,67 @@ class Network:
             s = s + sum(self._continuous.parts(self._outputs(), sl).values())
         return self._shaped(field, s)
 
+    def memory(self, field: str) -> np.ndarray:
+        """A field's memory trace (a view; (ny, nx) in 2-D); the field must have one."""
+        f = self.spec.field(field)
+        if f.memory is None:
+            raise FieldError(f.where, "memory", "this field has no memory trace; give it memory: {tau_build, tau_decay, ...}")
+        return self._shaped(field, self.state_m[self._slice(field)])
+
+    def _learning_index(self, coupling: str) -> int:
+        L = self._c.learning
+        if coupling not in L.names:
+            self.spec.coupling(coupling)  # raises the FieldError naming the known couplings
+            raise FieldError(f"coupling '{coupling}'", "learn", f"does not learn; learning couplings: {', '.join(L.names) or '(none)'}")
+        return L.names.index(coupling)
+
+    def table(self, coupling: str) -> np.ndarray:
+        """An item coupling's a_mj now (target items x source items, a copy): a learning coupling's current
+        weights, any other's table."""
+        c = self.spec.coupling(coupling)
+        if c.learn is not None:
+            return self._c.learning.table(self.state_w, self._learning_index(coupling)).copy()
+        return self._table(c).copy()
+
+    def set_table(self, coupling: str, table: Mapping[str, Mapping[str, float]] | np.ndarray) -> None:
+        """Put weights into a learning coupling (e.g. read back from a file): a matrix (target x source items)
+        or {target item: {source item: weight}} (items left out are 0); they must lie within its bounds."""
+        i = self._learning_index(coupling)
+        c = self.spec.coupling(coupling)
+        src, tgt = self.spec.fields[c.source], self.spec.fields[c.target]
+        lo, hi = float(self._c.learning.low[i]), float(self._c.learning.high[i])
+        if isinstance(table, Mapping):
+            a = np.zeros((len(tgt.items), len(src.items)))
+            for t, row in table.items():
+                if t not in tgt.items or not isinstance(row, Mapping):
+                    raise FieldError(c.where, f"table.{t}", f"unknown item of target field '{tgt.name}'; known: {', '.join(tgt.items)}")
+                for s_item, v in row.items():
+                    if s_item not in src.items:
+                        raise FieldError(c.where, f"table.{t}.{s_item}",
+                                         f"unknown item of source field '{src.name}'; known: {', '.join(src.items)}")
+                    if isinstance(v, bool) or not isinstance(v, (int, float)) or not lo <= float(v) <= hi:
+                        raise FieldError(c.where, f"table.{t}.{s_item}", f"must be a number within [{lo:g}, {hi:g}], got {v!r}")
+                    a[tgt.items.index(t), src.items.index(s_item)] = float(v)
+        else:
+            a = np.asarray(table, dtype=float)
+            if a.shape != (len(tgt.items), len(src.items)):
+                raise FieldError(c.where, "table", f"matrix shape {a.shape} does not match (target items, source items) = "
+                                                   f"({len(tgt.items)}, {len(src.items)})")
+            if not np.all(np.isfinite(a)) or a.min() < lo or a.max() > hi:
+                raise FieldError(c.where, "table", f"weights must be finite and within [{lo:g}, {hi:g}]")
+        self._c.learning.table(self.state_w, i)[:] = a
+
+    def learned_tables(self) -> dict[str, dict[str, dict[str, float]]]:
+        """Every learning coupling's weights now, {coupling: {target item: {source item: weight}}}: plain data
+        for a JSON file, read back with `set_table`."""
+        out = {}
+        for name in self._c.learning.names:
+            c = self.spec.coupling(name)
+            a = self.table(name)
+            src, tgt = self.spec.fields[c.source].items, self.spec.fields[c.target].items
+            out[name] = {t: {s_item: float(a[i, j]) for j, s_item in enumerate(src)} for i, t in enumerate(tgt)}
+        return out
+
     def _outputs(self) -> np.ndarray:
         c = self._c
         return 1.0 / (1.0 + np.exp(-np.clip(c.beta * (self.state_u - c.u0), -500, 500)))
@@ -251,7 +332,8 @@ class Network:
     def coupling_inputs(self, field: str) -> dict[str, np.ndarray]:
         """The part of ``field``'s input S(x) that each incoming coupling gives, by coupling name, from the
         outputs now (eq. 4: k times the table times the source items' outputs, spread like S; a continuous
-        coupling's kernel over its projected source); what S holds beyond their sum is the stimuli."""
+        coupling's kernel over its projected source; a learning coupling's current weights), and a memory
+        trace's part as "NAME (memory)"; what S holds beyond their sum is the stimuli."""
         c, sl = self._c, self._slice(field)
         out = {}
         if self._continuous.feeds(sl):
@@ -263,8 +345,12 @@ class Network:
             src, tgt = self.spec.fields[cp.source], self.spec.fields[cp.target]
             s0, t0 = c.item_off[cp.source], c.item_off[cp.target]
             d = np.zeros(c.n_items)
-            d[t0:t0 + len(tgt.items)] = cp.k * (self._table(cp) @ f_items[s0:s0 + len(src.items)])
+            a = self.table(cp.name) if cp.learn is not None else self._table(cp)
+            d[t0:t0 + len(tgt.items)] = cp.k * (a @ f_items[s0:s0 + len(src.items)])
             out[cp.name] = (c.render @ d)[sl]
+        trace = self.spec.fields[field].memory
+        if trace is not None:
+            out[f"{field} (memory)"] = self._shaped(field, trace.amplitude * self.state_m[sl])
         return out
 
     def _table(self, coupling) -> np.ndarray:
@@ -359,8 +445,12 @@ class Network:
                 paths.append(f"fields.{f.name}.{key}")
             for key in ("A", "sigma", "w_inhib"):
                 paths.append(f"fields.{f.name}.kernel.{key}")
+            if f.memory is not None:
+                paths += [f"fields.{f.name}.memory.{key}" for key in MEMORY_KEYS]
         for c in self.spec.couplings:
             paths.append(f"couplings.{c.name}.k")
+            if c.learn is not None:
+                paths += [f"couplings.{c.name}.learn.{key}" for key in ("rate", "decay")]
             for t, row in c.table.items():
                 for s in row:
                     paths.append(f"couplings.{c.name}.table.{t}.{s}")
@@ -379,6 +469,8 @@ class Network:
                 return f, parts[2]
             if len(parts) == 4 and parts[2] == "kernel" and parts[3] in ("A", "sigma", "w_inhib"):
                 return f.kernel, parts[3]
+            if len(parts) == 4 and parts[2] == "memory" and parts[3] in MEMORY_KEYS and f.memory is not None:
+                return f.memory, parts[3]
         if len(parts) >= 3 and parts[0] == "couplings":
             # coupling names may contain dots only if the user chose so; match the longest known name
             for c in self.spec.couplings:
@@ -387,6 +479,8 @@ class Network:
                     rest = parts[1 + len(cn) :]
                     if rest == ["k"]:
                         return c, "k"
+                    if len(rest) == 2 and rest[0] == "learn" and rest[1] in ("rate", "decay") and c.learn is not None:
+                        return c.learn, rest[1]
                     if len(rest) == 3 and rest[0] == "table":
                         row = c.table.setdefault(rest[1], {})
                         return row, rest[2]
@@ -418,8 +512,8 @@ class Network:
     def describe_table(self, coupling: str) -> str:
         """The connection table a_mj of a coupling as readable text."""
         c = self.spec.coupling(coupling)
-        return format_table(c.matrix(self.spec.fields), self.spec.fields[c.target].items, self.spec.fields[c.source].items,
-                            f"{c.name} (k={c.k:g})")
+        title = f"{c.name} (k={c.k:g}{', learnt' if c.learn is not None else ''})"
+        return format_table(self.table(coupling), self.spec.fields[c.target].items, self.spec.fields[c.source].items, title)
 
     def __repr__(self) -> str:
         sizes = ", ".join(f"{n}[{'x'.join(map(str, self.spec.fields[n].shape or [self.spec.fields[n].size]))}]"

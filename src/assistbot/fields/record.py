@@ -28,6 +28,10 @@ class Recorder:
         self._s: dict[str, list[np.ndarray]] = {f: [] for f in self.fields}
         self.couplings = [f for f in couplings if f in self.fields]
         self._c: dict[str, dict[str, list[np.ndarray]]] = {f: {} for f in self.couplings}
+        # learning elements are kept whenever the network has them: the trace of each recorded field that
+        # has one, and every learning coupling's weights
+        self._m: dict[str, list[np.ndarray]] = {f: [] for f in self.fields if net.spec.fields[f].memory is not None}
+        self._w: dict[str, list[np.ndarray]] = {c.name: [] for c in net.spec.couplings if c.learn is not None}
 
     def maybe_record(self, force: bool = False) -> None:
         if not force and self.net.steps % self.every:
@@ -36,6 +40,10 @@ class Recorder:
         for f in self.fields:
             self._u[f].append(self.net.u(f).copy())
             self._s[f].append(self.net.input(f).copy())
+        for f in self._m:
+            self._m[f].append(self.net.memory(f).copy())
+        for name in self._w:
+            self._w[name].append(self.net.table(name))
         for f in self.couplings:
             at = self.net.spec.fields[f].item_indices
             for name, part in self.net.coupling_inputs(f).items():
@@ -54,6 +62,16 @@ class Recorder:
     def s(self) -> dict[str, np.ndarray]:
         """Total input per field, shape (samples, positions)."""
         return {f: np.asarray(v) for f, v in self._s.items()}
+
+    @property
+    def memory(self) -> dict[str, np.ndarray]:
+        """Memory trace per recorded field that has one, shape (samples, positions)."""
+        return {f: np.asarray(v) for f, v in self._m.items()}
+
+    @property
+    def weights(self) -> dict[str, np.ndarray]:
+        """Per learning coupling: its table over time, shape (samples, target items, source items)."""
+        return {name: np.asarray(v) for name, v in self._w.items()}
 
     @property
     def coupling_items(self) -> dict[str, dict[str, np.ndarray]]:

@@ -13,6 +13,10 @@ Two kinds of coupling: item couplings (eq. 4: input at the target's items from
 the presence of peaks at the source's items, through a table) and continuous
 couplings (the source's whole output, optionally projected to fewer or more
 dimensions, convolved with a Gaussian kernel), as DFT toolkits couple fields.
+
+Two learning elements, as the DFT toolkits have them: a field's ``memory``
+(a trace built slowly where the field is active and fed back as a preshape)
+and an item coupling's ``learn`` (its table changes by a gated Hebbian rule).
 """
 
 from __future__ import annotations
@@ -91,6 +95,46 @@ class KernelSpec:
         return cls(**d)
 
 
+MEMORY_KEYS = ["tau_build", "tau_decay", "amplitude", "threshold"]
+
+
+@dataclass
+class MemorySpec:
+    """A memory trace of a field: a slowly built, slowly decaying preshape (COSIVINA's MemoryTrace).
+
+    With f the field's output and m the trace (one value per position, 0 at the start), while the field
+    holds activity somewhere (f > ``threshold`` at some position):
+
+    - tau_build dm/dt = -m + f   where f > threshold (the trace builds toward the output);
+    - tau_decay dm/dt = -m       everywhere else (it fades where the field is active elsewhere);
+
+    and while the field is inactive everywhere the trace holds: no activity is no evidence to forget.
+    The field receives ``amplitude * m`` as input (negative: a habituating trace).
+    """
+
+    tau_build: float = 1.0
+    tau_decay: float = 10.0
+    amplitude: float = 1.0
+    threshold: float = 0.5
+
+    def validate(self, where: str) -> None:
+        self.tau_build = _number(where, "memory.tau_build", self.tau_build, positive=True)
+        self.tau_decay = _number(where, "memory.tau_decay", self.tau_decay, positive=True)
+        self.amplitude = _number(where, "memory.amplitude", self.amplitude)
+        self.threshold = _number(where, "memory.threshold", self.threshold)
+        if not 0.0 < self.threshold < 1.0:
+            raise FieldError(where, "memory.threshold", f"compares with the output f in (0, 1); must lie between, got {self.threshold}")
+
+    @classmethod
+    def from_dict(cls, where: str, d: Any) -> "MemorySpec":
+        if isinstance(d, MemorySpec):
+            return d
+        if not isinstance(d, Mapping):
+            raise FieldError(where, "memory", f"must be a mapping with {', '.join(MEMORY_KEYS)}")
+        _check_keys(where, {f"memory.{k}": v for k, v in d.items()}, [f"memory.{k}" for k in MEMORY_KEYS])
+        return cls(**d)
+
+
 @dataclass
 class FieldSpec:
     """One 1-D field of eq. (1) with its sigmoid (3) and kernel (2).
@@ -116,6 +160,7 @@ class FieldSpec:
     noise: float = 0.0
     periodic: bool = False
     shape: list[int] | None = None
+    memory: MemorySpec | None = None
 
     @property
     def where(self) -> str:
@@ -172,6 +217,10 @@ class FieldSpec:
         if not isinstance(self.kernel, KernelSpec):
             raise FieldError(w, "kernel", f"must be a mapping with {', '.join(KERNEL_KEYS)}")
         self.kernel.validate(w)
+        if self.memory is not None:
+            if not isinstance(self.memory, MemorySpec):
+                raise FieldError(w, "memory", f"must be a mapping with {', '.join(MEMORY_KEYS)}")
+            self.memory.validate(w)
 
     def item_index(self, item: str) -> int:
         """Position index of an item's centre."""
@@ -198,6 +247,8 @@ class FieldSpec:
         kernel = d.pop("kernel", {})
         if isinstance(kernel, Mapping):
             kernel = KernelSpec.from_dict(f"field '{name}'", kernel)
+        if d.get("memory") is not None:
+            d["memory"] = MemorySpec.from_dict(f"field '{name}'", d["memory"])
         spec = cls(name=name, kernel=kernel, **d)
         spec.validate()
         return spec
@@ -226,12 +277,71 @@ class _Coupling:
         return fields_by_name[self.source], fields_by_name[self.target]
 
 
+LEARN_KEYS = ["rate", "decay", "gate", "bounds"]
+
+
+@dataclass
+class LearnSpec:
+    """A gated Hebbian rule for an item coupling's table (the table given is the prior, the start):
+
+        da_mj/dt = g(t) c_j(t) (rate c_m(t) - decay a_mj),   a_mj kept within ``bounds``
+
+    c_j the presence of the source (pre-synaptic) item j, c_m that of the target (post-synaptic) item m,
+    both f(u) at the item centres as in eq. (4); g the output f(u) at the ``gate`` item ("FIELD.ITEM"),
+    1 without a gate. Only the weights of active source items change: while j is active and the gate
+    open, its row of weights relaxes toward ``rate / decay`` times the target's pattern (with ``decay``
+    0 it only grows, up to the upper bound). Rates are per second.
+    """
+
+    rate: float = 0.0
+    decay: float = 0.0
+    gate: str | None = None
+    bounds: list[float] = field(default_factory=lambda: [0.0, 1.0])
+
+    def validate(self, where: str, fields_by_name: Mapping[str, "FieldSpec"]) -> None:
+        self.rate = _number(where, "learn.rate", self.rate, nonneg=True)
+        self.decay = _number(where, "learn.decay", self.decay, nonneg=True)
+        if (not isinstance(self.bounds, (list, tuple)) or len(self.bounds) != 2):
+            raise FieldError(where, "learn.bounds", f"must be [lowest, highest] weight, got {self.bounds!r}")
+        lo = _number(where, "learn.bounds", self.bounds[0])
+        hi = _number(where, "learn.bounds", self.bounds[1])
+        if lo > hi:
+            raise FieldError(where, "learn.bounds", f"the lowest weight {lo:g} is above the highest {hi:g}")
+        self.bounds = [lo, hi]
+        if self.gate is not None:
+            gate_item(where, self.gate, fields_by_name)
+
+    @classmethod
+    def from_dict(cls, where: str, d: Any) -> "LearnSpec":
+        if isinstance(d, LearnSpec):
+            return d
+        if not isinstance(d, Mapping):
+            raise FieldError(where, "learn", f"must be a mapping with {', '.join(LEARN_KEYS)}")
+        _check_keys(where, {f"learn.{k}": v for k, v in d.items()}, [f"learn.{k}" for k in LEARN_KEYS])
+        return cls(**d)
+
+
+def gate_item(where: str, ref: Any, fields_by_name: Mapping[str, "FieldSpec"]) -> tuple[str, str]:
+    """(field, item) of a "FIELD.ITEM" reference; the field is the longest known name before a dot."""
+    if not isinstance(ref, str) or "." not in ref:
+        raise FieldError(where, "learn.gate", f"must be FIELD.ITEM, got {ref!r}")
+    for name in sorted(fields_by_name, key=len, reverse=True):
+        if ref.startswith(name + "."):
+            item = ref[len(name) + 1:]
+            if item not in fields_by_name[name].items:
+                raise FieldError(where, "learn.gate", f"unknown item {item!r} of field '{name}'; "
+                                                      f"known: {', '.join(fields_by_name[name].items) or '(none)'}")
+            return name, item
+    raise FieldError(where, "learn.gate", f"no field named in {ref!r}; known: {', '.join(fields_by_name)}")
+
+
 @dataclass
 class CouplingSpec(_Coupling):
     """Input from items of ``source`` to items of ``target``, eq. (4), scaled by ``k``.
 
     ``table`` maps target item -> {source item: a_mj}; a matrix of shape
-    (target items, source items) is accepted too.
+    (target items, source items) is accepted too. With ``learn`` the table is
+    the prior of a gated Hebbian rule (`LearnSpec`).
     """
 
     source: str
@@ -239,6 +349,7 @@ class CouplingSpec(_Coupling):
     k: float = 1.0
     table: dict[str, dict[str, float]] = field(default_factory=dict)
     name: str = ""
+    learn: LearnSpec | None = None
 
 
     def validate(self, fields_by_name: Mapping[str, FieldSpec]) -> None:
@@ -267,6 +378,15 @@ class CouplingSpec(_Coupling):
                     raise FieldError(w, f"table.{t}.{s}", f"unknown item of source field '{src.name}'; known: {', '.join(src.items)}")
                 clean[t][s] = _number(w, f"table.{t}.{s}", a)
         self.table = clean
+        if self.learn is not None:
+            if not isinstance(self.learn, LearnSpec):
+                raise FieldError(w, "learn", f"must be a mapping with {', '.join(LEARN_KEYS)}")
+            self.learn.validate(w, fields_by_name)
+            lo, hi = self.learn.bounds
+            for t, row in clean.items():
+                for s, a in row.items():
+                    if not lo <= a <= hi:
+                        raise FieldError(w, f"table.{t}.{s}", f"the prior {a:g} lies outside learn.bounds [{lo:g}, {hi:g}]")
 
     def matrix(self, fields_by_name: Mapping[str, FieldSpec]) -> np.ndarray:
         """a_mj as an array (target items x source items)."""
@@ -280,10 +400,13 @@ class CouplingSpec(_Coupling):
     @classmethod
     def from_dict(cls, d: Mapping[str, Any], index: int) -> "CouplingSpec":
         where = f"coupling #{index}"
-        _check_keys(where, d, ["source", "target", "k", "table", "name"])
+        _check_keys(where, d, ["source", "target", "k", "table", "name", "learn"])
         for key in ("source", "target"):
             if key not in d:
                 raise FieldError(where, key, "is required")
+        d = dict(d)
+        if d.get("learn") is not None:
+            d["learn"] = LearnSpec.from_dict(where if not d.get("name") else f"coupling '{d['name']}'", d["learn"])
         return cls(**d)
 
 
@@ -361,6 +484,8 @@ class ContinuousCouplingSpec(_Coupling):
     @classmethod
     def from_dict(cls, d: Mapping[str, Any], index: int) -> "ContinuousCouplingSpec":
         where = f"coupling #{index}"
+        if "learn" in d:
+            raise FieldError(where, "learn", "learning changes an item coupling's table; a coupling with a kernel has none")
         _check_keys(where, d, ["source", "target", "kernel", "boundary", "project", "expand", "name"])
         for key in ("source", "target", "kernel"):
             if key not in d:
@@ -394,6 +519,11 @@ class NetworkSpec:
             if self.dt > f.tau / 2:
                 raise FieldError(f.where, "tau",
                                  f"dt={self.dt} s is too large for a stable Euler step with tau={f.tau} s; need dt <= tau/2")
+            if f.memory is not None:
+                for key in ("tau_build", "tau_decay"):
+                    if self.dt > getattr(f.memory, key):
+                        raise FieldError(f.where, f"memory.{key}",
+                                         f"dt={self.dt} s is larger than {key}={getattr(f.memory, key)} s; the trace would overshoot")
         names = set()
         every: list[CouplingSpec | ContinuousCouplingSpec] = [*self.couplings, *self.continuous]
         for c in every:
@@ -401,6 +531,9 @@ class NetworkSpec:
             if c.name in names:
                 raise FieldError(c.where, "name", "two couplings share this name; give one a distinct 'name'")
             names.add(c.name)
+        for c in self.couplings:
+            if c.learn is not None and c.learn.decay * self.dt > 1.0:
+                raise FieldError(c.where, "learn.decay", f"{c.learn.decay:g}/s with dt={self.dt} s overshoots; need decay <= 1/dt")
 
     @classmethod
     def from_dict(cls, d: Mapping[str, Any]) -> "NetworkSpec":

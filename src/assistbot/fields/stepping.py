@@ -79,24 +79,55 @@ class NumpyStepper:
         self.c = c
         self._starts = c.offsets[:-1]
         self.continuous = ContinuousInput(c)
+        self._traced = [c.slice(c.names[i]) for i in np.flatnonzero(c.memory.fields)]
 
-    def run(self, n: int, u: np.ndarray, S: np.ndarray, S_ext: np.ndarray, stim_item: np.ndarray, xi: np.ndarray | None) -> None:
-        """``n`` Euler steps; ``xi`` is (n, P) standard normal noise or None."""
+    def run(self, n: int, u: np.ndarray, S: np.ndarray, S_ext: np.ndarray, stim_item: np.ndarray, xi: np.ndarray | None,
+            m: np.ndarray, w: np.ndarray) -> None:
+        """``n`` Euler steps; ``xi`` is (n, P) standard normal noise or None; ``m`` the memory traces and ``w``
+        the learned weights, both updated in place."""
         for k in range(n):
-            self._step(u, S, S_ext, stim_item, None if xi is None else xi[k])
+            self._step(u, S, S_ext, stim_item, None if xi is None else xi[k], m, w)
 
-    def _step(self, u: np.ndarray, S: np.ndarray, S_ext: np.ndarray, stim_item: np.ndarray, xi: np.ndarray | None) -> None:
+    def _step(self, u: np.ndarray, S: np.ndarray, S_ext: np.ndarray, stim_item: np.ndarray, xi: np.ndarray | None,
+              m: np.ndarray, w: np.ndarray) -> None:
         c = self.c
         f = expit(c.beta * (u - c.u0))
         inhib = c.inhib * np.add.reduceat(f, self._starts)
-        d = c.K @ f[c.item_pos] + stim_item
+        presence = f[c.item_pos]
+        d = c.K @ presence + stim_item
+        L = c.learning
+        for i in range(len(L.names)):  # drive from the weights before this step's update
+            s0, t0 = L.source[i], L.target[i]
+            d[t0:t0 + L.n_target[i]] += L.k[i] * (L.table(w, i) @ presence[s0:s0 + L.n_source[i]])
         np.add(S_ext, c.render @ d, out=S)
+        if self._traced:
+            S += c.memory.amplitude * m
+            self._build_traces(f, m)
+        if len(L.names):
+            self._learn(presence, w)
         rate = S + (c.lateral @ f) - inhib[c.field_of] + c.h - u
         if self.continuous.terms:
             rate += self.continuous.total(f)
         u += c.dt_tau * rate
         if xi is not None:
             u += c.noise_scale * xi
+
+    def _build_traces(self, f: np.ndarray, m: np.ndarray) -> None:
+        mem = self.c.memory
+        for sl in self._traced:
+            active = f[sl] > mem.threshold[sl]
+            if active.any():
+                m[sl] += np.where(active, mem.build[sl] * (f[sl] - m[sl]), -mem.decay[sl] * m[sl])
+
+    def _learn(self, presence: np.ndarray, w: np.ndarray) -> None:
+        L, dt = self.c.learning, self.c.spec.dt
+        for i in range(len(L.names)):
+            W = L.table(w, i)
+            g = 1.0 if L.gate[i] < 0 else presence[L.gate[i]]
+            pre = presence[L.source[i]:L.source[i] + L.n_source[i]]
+            post = presence[L.target[i]:L.target[i] + L.n_target[i]]
+            W += dt * g * pre[None, :] * (L.rate[i] * post[:, None] - L.decay[i] * W)
+            np.clip(W, L.low[i], L.high[i], out=W)
 
 
 def _kernels():
@@ -150,13 +181,20 @@ class NumbaStepper:
             np.zeros(max([(ny + g.taps_y.size) * nx for g, (ny, nx) in zip(G, grids)], default=1)),
             self._rate, self._d, np.zeros(P),
         )
+        mem, L = c.memory, c.learning
+        self._learning = (
+            mem.any, mem.fields, mem.amplitude, mem.build, mem.decay, mem.threshold,
+            c.spec.dt, L.source, L.n_source, L.target, L.n_target, L.gate, L.k, L.rate, L.decay, L.low, L.high, L.ptr,
+        )
 
-    def run(self, n: int, u: np.ndarray, S: np.ndarray, S_ext: np.ndarray, stim_item: np.ndarray, xi: np.ndarray | None) -> None:
-        """``n`` Euler steps in one call; ``xi`` is (n, P) standard normal noise or None."""
+    def run(self, n: int, u: np.ndarray, S: np.ndarray, S_ext: np.ndarray, stim_item: np.ndarray, xi: np.ndarray | None,
+            m: np.ndarray, w: np.ndarray) -> None:
+        """``n`` Euler steps in one call; ``xi`` is (n, P) standard normal noise or None; ``m`` the memory
+        traces and ``w`` the learned weights, both updated in place."""
         if xi is None:
-            self._kernel(n, u, S, S_ext, stim_item, self._no_xi, False, *self._static)
+            self._kernel(n, u, S, S_ext, stim_item, self._no_xi, False, *self._static, m, w, *self._learning)
         else:
-            self._kernel(n, u, S, S_ext, stim_item, xi, True, *self._static)
+            self._kernel(n, u, S, S_ext, stim_item, xi, True, *self._static, m, w, *self._learning)
 
 
 def numba_sigmoid(u: np.ndarray, beta: np.ndarray, u0: np.ndarray) -> np.ndarray:
