@@ -59,10 +59,13 @@ def test_a_partner_is_built_in_the_physics_with_the_same_arm_as_the_one_it_plans
     shoulder = d.xpos[m.body("human_r_upper_arm").id]
     assert shoulder[:2] == pytest.approx(DEFAULT_SHOULDER[:2] + np.array([-0.05, -0.04]))
     assert shoulder[2] < DEFAULT_SHOULDER[2] - 0.03                      # sits lower
-    # the mouth moved with the shoulders; the table and the objects did not
+    # the mouth moved with the shoulders; the table and the robot's workspace did not
     assert d.site_xpos[m.site("human_mouth").id][2] == pytest.approx(
         default.data.site_xpos[default.model.site("human_mouth").id][2] + shoulder[2] - DEFAULT_SHOULDER[2])
-    assert d.xpos[w.body_id["bottle"]] == pytest.approx(default.data.xpos[default.body_id["bottle"]])
+    assert d.xpos[w.body_id["glass"]] == pytest.approx(default.data.xpos[default.body_id["glass"]])
+    # the bottle in the person's workspace stands at this person's own place for it: back and aside with them
+    bottle = d.xpos[w.body_id["bottle"]][:2] - default.data.xpos[default.body_id["bottle"]][:2]
+    assert bottle[0] < -0.04 and bottle[1] < -0.02
     # the IK model is the same arm
     arm = HumanArm(w)
     assert arm.shoulder == pytest.approx(shoulder)
@@ -75,6 +78,30 @@ def test_a_partner_is_built_in_the_physics_with_the_same_arm_as_the_one_it_plans
     assert m.joint("human_r_forearm_rot").range == pytest.approx(default.model.joint("human_r_forearm_rot").range)
     # the default body changes nothing
     assert HumanArm(default).reach == pytest.approx(DEFAULT_REACH)
+
+
+def _grasps(world, body, obj: str, grip: str) -> bool:
+    hc = HumanController(world, config=parse_human({"profile": "passive", "partner": Partner(body=body).to_dict()}))
+    hc.start("grasp", object=obj, grip=grip)
+    t_end = world.time + 15.0
+    while hc.current is not None and world.time < t_end:
+        hc.run(0.2)
+    ends = [e for e in hc.events() if e.kind in ("succeeded", "failed")]
+    return bool(ends) and ends[-1].kind == "succeeded" and world.human_holding() == obj
+
+
+def test_objects_in_the_persons_workspace_stand_within_their_reach():
+    """At the default person's place the glass is out of the smallest partner's reach (seated farthest back
+    and aside); "in the HWS" puts it at that partner's own place for it, which they reach."""
+    from assistbot import catalogue
+
+    default_place = catalogue.BY_NAME["glass"].places["HWS"]
+    there = build_world(Arrangement.from_options("RWS:closed", f"HWS:full@{default_place[0]},{default_place[1]}"), body=SMALLEST)
+    assert not _grasps(there, SMALLEST, "glass", "sg")
+    own = build_world(Arrangement.from_options("RWS:closed", "HWS:full"), body=SMALLEST)
+    assert np.linalg.norm(np.array(own.arrangement.position("glass")) - default_place) > 0.05
+    assert _grasps(own, SMALLEST, "glass", "sg")
+    assert build_world(Arrangement.from_options("RWS:closed", "HWS:full")).arrangement.position("glass") == default_place
 
 
 @pytest.mark.parametrize("who", [SMALLEST, LARGEST, sample_partner(2).body, sample_partner(4).body],

@@ -27,7 +27,7 @@ import numpy as np
 from assistbot.human.dls import bounded, dls_step, pose_at
 from assistbot.human.ikmodel import arm_model
 from assistbot.interfaces import CONTROL_DT
-from assistbot.world import HAND_POSTURES, HUMAN_ARM_JOINTS, HUMAN_HAND_JOINTS
+from assistbot.world import HAND_POSTURES, HUMAN_ARM_JOINTS, HUMAN_HAND_JOINTS, layout
 
 #: the hand-over zone reaches this far across the middle line (world/table x, m)
 HANDOVER_X_MAX = 0.05
@@ -97,6 +97,16 @@ def own_point(p, shoulder: np.ndarray, reach: float) -> np.ndarray:
     if reach == DEFAULT_REACH and np.array_equal(shoulder, DEFAULT_SHOULDER):
         return p       # the default person: exactly the point named
     return shoulder + (p - DEFAULT_SHOULDER) * (reach / DEFAULT_REACH)
+
+
+def own_table_spot(xy, shoulder: np.ndarray, reach: float, radius: float) -> np.ndarray:
+    """A table spot (x, y) named for the default person (where an object stands, where it is put down) as
+    the person with this ``shoulder`` and ``reach`` has it (`own_point` at the table top), kept on the
+    table and on the person's half for an object of ``radius``."""
+    x, y = own_point([xy[0], xy[1], layout.TABLE_Z], shoulder, reach)[:2]
+    xmin = -(layout.TABLE_HALF_X - radius - layout.EDGE_MARGIN)
+    ymax = layout.TABLE_HALF_Y - radius - layout.EDGE_MARGIN
+    return np.array([min(max(x, xmin), -(radius + layout.MIDLINE_MARGIN)), min(max(y, -ymax), ymax)])
 
 
 def rot_z(angle: float) -> np.ndarray:
@@ -231,6 +241,10 @@ class HumanArm:
     def own_point(self, p) -> np.ndarray:
         """A point named for the default person as this person has it (`own_point`)."""
         return own_point(p, self.shoulder, self.reach)
+
+    def own_table_spot(self, xy, radius: float) -> np.ndarray:
+        """A table spot named for the default person as this person has it (`own_table_spot`)."""
+        return own_table_spot(xy, self.shoulder, self.reach, radius)
 
     def tremor(self, t: float) -> np.ndarray:
         """The tremor's displacement of the hand at time t (world, m)."""

@@ -308,9 +308,10 @@ def hold_out(c, object: str | None = None) -> Gen:
 
 def own_side_spot(c, held: str) -> np.ndarray:
     """A free place on the person's side, back from the hand-over zone, for putting ``held`` down: of
-    OWN_SIDE_SPOTS the one farthest from the other objects standing there (a person's eyes)."""
+    OWN_SIDE_SPOTS (as this person has them: within their reach) the one farthest from the other objects
+    standing there (a person's eyes)."""
     others = [standing_end(c.world, o)[:2] for o in catalogue.TASK_OBJECTS if o != held]
-    spots = np.array(OWN_SIDE_SPOTS, float)
+    spots = np.array([c.arm.own_table_spot(xy, catalogue.radius(held)) for xy in OWN_SIDE_SPOTS])
     clear = np.min([np.linalg.norm(spots - o, axis=1) for o in others], axis=0) if others else np.zeros(len(spots))
     hand = c.arm.hand_pose()[0][:2]
     # the farthest from the others, among those far enough the nearest to the hand
@@ -567,7 +568,7 @@ def drink(c, timeout: float = 6.0, put_back: bool = True) -> Gen:
     w = c.world
     base_xy = _center_base(c, "glass")[:2].copy()
     if base_xy[0] > -0.12:
-        base_xy = np.array([-0.24, 0.05])
+        base_xy = c.arm.own_table_spot((-0.24, 0.05), catalogue.radius("glass"))
     if w.human_holding() != "glass":
         ok, why = yield from grasp(c, "glass", "sg")
         if not ok:

@@ -11,6 +11,9 @@ The same edit is applied to the scene's spec (`world.build_world`) and to the ar
 - a reduced range of motion narrows the joints that carry the hand out (`ROM_JOINTS`: shoulder flexion
   and abduction, elbow; and their servos) toward the resting posture: each end of a range comes that
   fraction of its distance nearer the resting angle.
+
+The person's workspace is theirs too (`own_places`): an object at its default place in the HWS stands
+where this person has that place, within their reach, as the experimenter would set it for them.
 """
 
 from __future__ import annotations
@@ -20,9 +23,10 @@ from functools import lru_cache
 import mujoco
 import numpy as np
 
+from assistbot import catalogue
 from assistbot.human.population import Body
 from assistbot.resources import MJCF
-from assistbot.world import HUMAN_ARM_JOINTS, layout
+from assistbot.world import HUMAN_ARM_JOINTS, Arrangement, Placement, layout
 
 #: points of the upper body above this height (world z, m) move with the shoulders: above the table
 #: top and the left forearm resting on it, below the shoulder
@@ -102,3 +106,23 @@ def apply_body(spec: mujoco.MjSpec, body: Body) -> mujoco.MjSpec:
             if act is not None:
                 act.ctrlrange = rng
     return spec
+
+
+def own_places(arrangement: Arrangement, body: Body) -> Arrangement:
+    """The arrangement as this person finds it: an object at its zone's default place in the HWS (the
+    person's workspace) stands where this person has that place (`arm.own_table_spot`: the same place
+    relative to their shoulder, in proportion to their reach). Explicit positions and the robot's
+    workspace stay as given; for the default person nothing changes."""
+    if body.is_default():
+        return arrangement
+    from assistbot.human.arm import own_table_spot, shoulder_and_reach
+    from assistbot.human.ikmodel import arm_model
+
+    shoulder, reach = shoulder_and_reach(arm_model(body))
+    placed = {}
+    for name, p in zip(catalogue.TASK_OBJECTS, arrangement.placements):
+        if p.zone == "HWS" and p.position is None:
+            xy = own_table_spot(catalogue.BY_NAME[name].places["HWS"], shoulder, reach, catalogue.radius(name))
+            p = Placement(p.zone, p.state, (float(xy[0]), float(xy[1])))
+        placed[name] = p
+    return Arrangement(**placed).validate(f"the arrangement for {body}")

@@ -76,14 +76,16 @@ GRIPPER_CLOSED = 1.6
 
 def build_world(arrangement: Arrangement, seed: int = 0, body: "Body | None" = None) -> "World":
     """Load the scene and place bottle, stopper, glass and liquid as `arrangement` says; the person has
-    ``body`` (`assistbot.human.population.Body`; None: the default person's).
+    ``body`` (`assistbot.human.population.Body`; None: the default person's), and the objects at their
+    default places in the HWS stand where this person has those places (`human.body.own_places`).
 
     The seed only jitters the liquid's starting layout (deterministically)."""
-    from assistbot.human.body import apply_body
+    from assistbot.human.body import apply_body, own_places
     from assistbot.human.population import Body
 
     arrangement.validate()
     body = body or Body()
+    arrangement = own_places(arrangement, body)
     spec = apply_body(mujoco.MjSpec.from_file(str(layout.SCENE_XML)), body)
     model = spec.compile()
     world = World(model, arrangement, seed)
