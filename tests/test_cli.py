@@ -42,8 +42,8 @@ def test_bad_choice_names_the_option():
 def test_fields_demo_writes_its_plots(tmp_path, capsys):
     assert main(["fields-demo", "--out", str(tmp_path / "demo"), "--backend", "numpy"]) == 0
     names = sorted(p.name for p in (tmp_path / "demo").glob("*.png"))
-    assert names == ["choice.png", "memory.png", "plane.png", "readout_x.png", "selection.png", "sensor.png",
-                     "source_1.png", "source_2.png", "target.png"]
+    assert names == ["choice.png", "goal.png", "memory.png", "plane.png", "readout_x.png", "selection.png", "sensor.png",
+                     "source_1.png", "source_2.png", "target.png", "weights.png"]
     assert str(tmp_path / "demo") in capsys.readouterr().out
 
 

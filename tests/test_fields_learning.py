@@ -286,3 +286,32 @@ def test_the_recorder_keeps_traces_and_weights_over_time(backend):
     traced.set_stimulus("F", "a", 6.0)
     traced.run(1.0)
     assert rec.memory["F"].shape == (11, 30) and rec.memory["F"][-1].max() > 0.5
+
+
+@pytest.mark.parametrize("backend", BACKENDS)
+def test_a_grip_that_meant_pour_comes_to_mean_hand_over_after_three_taught_trials(backend):
+    from assistbot.fields.demo import learning_spec
+
+    net = Network.from_dict(learning_spec(), backend=backend)
+
+    def side_grip_alone() -> list[str]:
+        net.set_stimulus("grip", "side", 5.0)
+        net.run(1.0)
+        chosen = net.peaks("goal")
+        net.clear_stimuli()
+        net.reset()
+        return chosen
+
+    assert side_grip_alone() == ["pour"]
+    net.forget()
+    for _ in range(3):
+        net.set_stimulus("grip", "side", 5.0)
+        net.set_stimulus("goal", "hand-over", 6.0)
+        net.set_stimulus("success", "yes", 5.0)
+        net.run(1.5)
+        net.clear_stimuli()
+        net.reset()
+    assert side_grip_alone() == ["hand-over"]
+    w = net.table("grip->goal")
+    assert w[0, 1] > 3.0 and w[1, 1] < 1.0   # side -> hand-over up, side -> pour down
+    assert w[0, 0] == pytest.approx(4.0, abs=1e-6)   # the grip not seen: its weights stay

@@ -1,4 +1,5 @@
-"""`assistbot fields-demo`: plots of selection, self-sustained memory and coincidence detection."""
+"""`assistbot fields-demo`: plots of selection, self-sustained memory, coincidence detection, continuous and 2-D
+couplings, and learning."""
 
 from __future__ import annotations
 

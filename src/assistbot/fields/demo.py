@@ -15,6 +15,14 @@ And a second, spatial network, coupled the way DFT toolkits couple fields
 - ``plane``: two 1-D cues, expanded along the other axis, meet in a 2-D
   field, which forms a peak only where they cross; the peak's x is read
   back out into a 1-D field by the max over y.
+
+And a third, that learns (a memory trace and a gated Hebbian coupling):
+
+- ``goal``: a side grip first means "pour" (the prior table); three trials
+  in which a side grip went with a hand-over that worked (the gate open)
+  teach the coupling otherwise, and then the side grip alone selects
+  "hand-over"; the goal field's memory trace keeps a preshape of what it chose;
+- ``weights``: the learned table over time.
 """
 
 from __future__ import annotations
@@ -22,7 +30,7 @@ from __future__ import annotations
 from pathlib import Path
 
 from assistbot.fields.network import Network
-from assistbot.fields.plot import plot_history, plot_plane
+from assistbot.fields.plot import plot_history, plot_plane, plot_weights
 
 ITEMS = ["A", "B", "C", "D"]
 
@@ -105,6 +113,52 @@ def run_spatial_demo(out: Path, backend: str = "auto") -> list[Path]:
     return paths
 
 
+def learning_spec() -> dict:
+    """A grip field, a goal field with a memory trace, a success gate; grip -> goal learns."""
+    field = {"tau": 0.05, "h": -3.0, "kernel": {"A": 1.0, "sigma": 2.0, "w_inhib": 0.5}}
+    return {
+        "dt": 0.005,
+        "fields": {
+            "grip": {"items": ["above", "side"], **field},
+            "goal": {"items": ["hand-over", "pour"], **field,
+                     "memory": {"tau_build": 1.0, "tau_decay": 10.0, "amplitude": 0.5}},
+            "success": {"items": ["yes"], "tau": 0.05, "h": -3.0},
+        },
+        "couplings": [{"source": "grip", "target": "goal", "k": 1.0,
+                       "table": {"hand-over": {"above": 4.0}, "pour": {"side": 4.0}},
+                       "learn": {"rate": 4.0, "decay": 1.0, "gate": "success.yes", "bounds": [0, 4]}}],
+    }
+
+
+def run_learning_demo(out: Path, backend: str = "auto") -> list[Path]:
+    """A side grip alone (0-1 s), three taught trials of 1.5 s each (side grip, hand-over, success), the side
+    grip alone again (7.5-8.5 s), with 0.5 s of rest after each."""
+    net = Network.from_dict(learning_spec(), backend=backend)
+    rec = net.record(every=4)
+
+    def trial(teach: bool, seconds: float) -> None:
+        net.set_stimulus("grip", "side", 5.0)
+        if teach:
+            net.set_stimulus("goal", "hand-over", 6.0)
+            net.set_stimulus("success", "yes", 5.0)
+        net.run(seconds)
+        net.clear_stimuli()
+        net.run(0.5)
+
+    trial(False, 1.0)
+    for _ in range(3):
+        trial(True, 1.5)
+    trial(False, 1.0)
+    out.mkdir(parents=True, exist_ok=True)
+    return [
+        plot_history(rec, "goal", out / "goal.png",
+                     title="goal: a side grip means pour (0-1 s); taught three times (1.5-7 s) that it\n"
+                           "meant a hand-over, the side grip alone then selects hand-over (7.5 s)"),
+        plot_weights(rec, "grip->goal", out / "weights.png",
+                     title="grip->goal, learnt while a side grip went with a hand-over that worked"),
+    ]
+
+
 def run_demo(out: Path, backend: str = "auto") -> list[Path]:
     """Run the scripted 6 s demo and the spatial one; write one PNG per field shown; returns the paths."""
     net = Network.from_dict(demo_spec(), backend=backend)
@@ -135,4 +189,4 @@ def run_demo(out: Path, backend: str = "auto") -> list[Path]:
     }
     out.mkdir(parents=True, exist_ok=True)
     paths = [plot_history(rec, name, out / f"{name}.png", title=title) for name, title in titles.items()]
-    return paths + run_spatial_demo(out, backend)
+    return paths + run_spatial_demo(out, backend) + run_learning_demo(out, backend)

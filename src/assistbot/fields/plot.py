@@ -78,3 +78,20 @@ def plot_plane(panels: dict[str, np.ndarray], path: str | Path, threshold: float
         ax.set_ylabel("y")
         ax.set_title(title, fontsize=9)
     return save_figure(fig, path)
+
+
+def plot_weights(rec: Recorder, coupling: str, path: str | Path, title: str | None = None) -> Path:
+    """A learning coupling's table over time: one line per weight a_mj, labelled "source -> target"."""
+    spec = rec.net.spec.coupling(coupling)
+    src, tgt = rec.net.spec.fields[spec.source].items, rec.net.spec.fields[spec.target].items
+    w = rec.weights[coupling]
+    plt = pyplot()
+    fig, ax = plt.subplots(figsize=(8, 3.2))
+    for i, t_item in enumerate(tgt):
+        for j, s_item in enumerate(src):
+            ax.plot(rec.times, w[:, i, j], lw=1.4, label=f"{s_item} -> {t_item}")
+    ax.set_xlabel("time (s)")
+    ax.set_ylabel("weight a_mj")
+    ax.legend(loc="center left", bbox_to_anchor=(1.01, 0.5), fontsize=7, frameon=False)
+    ax.set_title(title or coupling)
+    return save_figure(fig, path)
