@@ -51,6 +51,17 @@ def _check_keys(where: str, given: Mapping[str, Any], allowed: list[str]) -> Non
             raise FieldError(where, str(key), f"unknown parameter; allowed: {', '.join(allowed)}")
 
 
+def _nested(cls, where: str, key: str, keys: list[str], d: Any):
+    """A nested parameter block (``kernel``, ``memory``, ``learn``) from a mapping, its keys checked and named
+    ``key.name`` in errors; an instance of ``cls`` passes as it is."""
+    if isinstance(d, cls):
+        return d
+    if not isinstance(d, Mapping):
+        raise FieldError(where, key, f"must be a mapping with {', '.join(keys)}")
+    _check_keys(where, {f"{key}.{k}": v for k, v in d.items()}, [f"{key}.{k}" for k in keys])
+    return cls(**d)
+
+
 KERNEL_KEYS = ["A", "sigma", "w_inhib", "normalize", "cutoff"]
 
 
@@ -87,12 +98,7 @@ class KernelSpec:
 
     @classmethod
     def from_dict(cls, where: str, d: Any) -> "KernelSpec":
-        if isinstance(d, KernelSpec):
-            return d
-        if not isinstance(d, Mapping):
-            raise FieldError(where, "kernel", f"must be a mapping with {', '.join(KERNEL_KEYS)}")
-        _check_keys(where, {f"kernel.{k}": v for k, v in d.items()}, [f"kernel.{k}" for k in KERNEL_KEYS])
-        return cls(**d)
+        return _nested(cls, where, "kernel", KERNEL_KEYS, d)
 
 
 MEMORY_KEYS = ["tau_build", "tau_decay", "amplitude", "threshold"]
@@ -127,12 +133,7 @@ class MemorySpec:
 
     @classmethod
     def from_dict(cls, where: str, d: Any) -> "MemorySpec":
-        if isinstance(d, MemorySpec):
-            return d
-        if not isinstance(d, Mapping):
-            raise FieldError(where, "memory", f"must be a mapping with {', '.join(MEMORY_KEYS)}")
-        _check_keys(where, {f"memory.{k}": v for k, v in d.items()}, [f"memory.{k}" for k in MEMORY_KEYS])
-        return cls(**d)
+        return _nested(cls, where, "memory", MEMORY_KEYS, d)
 
 
 @dataclass
@@ -313,12 +314,7 @@ class LearnSpec:
 
     @classmethod
     def from_dict(cls, where: str, d: Any) -> "LearnSpec":
-        if isinstance(d, LearnSpec):
-            return d
-        if not isinstance(d, Mapping):
-            raise FieldError(where, "learn", f"must be a mapping with {', '.join(LEARN_KEYS)}")
-        _check_keys(where, {f"learn.{k}": v for k, v in d.items()}, [f"learn.{k}" for k in LEARN_KEYS])
-        return cls(**d)
+        return _nested(cls, where, "learn", LEARN_KEYS, d)
 
 
 def gate_item(where: str, ref: Any, fields_by_name: Mapping[str, "FieldSpec"]) -> tuple[str, str]:
