@@ -216,28 +216,6 @@ def test_take_from_robot(obj, at, glass_zone):
     assert watch.x_max <= HANDOVER_X_MAX                      # the hand stayed in the hand-over zone
 
 
-def test_asked_to_take_it_the_person_waits_as_long_as_the_robot_is_seen_bringing_it():
-    """The robot announced the glass and carries it (turning it first takes a while): the person waits for
-    it, longer than she waits for an offer that does not come, and takes it once it is held out."""
-    w, s, hc = _setup(_arr({"zone": "RWS", "state": "open"}, {"zone": "RWS", "state": "empty"}))
-    s.grasp_at("glass")
-    s.release_when_taken = True
-    hc.run(0.02, robot=s.tick)
-    hc.start("take_from_robot", object="glass")
-    hc.run(25.0, robot=s.tick)       # in the robot's hand, in its own workspace: on its way
-    assert hc.current is not None and not [e for e in hc.events() if e.kind == "failed"]
-    s.carry_to((0.0, -0.05, 0.78))
-    _ok(_run_until_done(hc, s, 15.0, "take_from_robot"), "take_from_robot")
-    assert s.holds() is None
-
-
-def test_asked_to_take_it_the_person_gives_up_when_nothing_comes():
-    w, s, hc = _setup(_arr({"zone": "RWS", "state": "open"}, {"zone": "RWS", "state": "empty"}))
-    hc.start("take_from_robot", object="glass")
-    ends = _run_until_done(hc, s, 25.0, "take_from_robot")
-    assert ends and ends[-1].kind == "failed" and "offers nothing" in ends[-1].detail["reason"]
-
-
 def test_handed_the_bottle_with_the_glass_out_of_reach_puts_it_down_on_his_side():
     """He cannot pour into a glass in the robot's workspace: he does not hold the bottle for ever."""
     w, s, hc = _setup(_arr({"zone": "RWS", "state": "open"}, {"zone": "RWS", "state": "empty"}))

@@ -395,17 +395,14 @@ def hand_to_robot(c, object: str, grip: str | None = None, timeout: float = 40.0
     return ok, f"{object} handed over"
 
 
-def _robot_hand_still(c, showing: Callable[[RobotView], bool], seconds: float, timeout: float,
-                      on_its_way: Callable[[RobotView], bool] = lambda v: False) -> Generator[None, None, np.ndarray | None]:
+def _robot_hand_still(c, showing: Callable[[RobotView], bool], seconds: float,
+                      timeout: float) -> Generator[None, None, np.ndarray | None]:
     """Wait until the robot's hand, ``showing(view)`` all along, has kept still (within STILL_TOLERANCE)
-    for ``seconds``: where it is then, or None after ``timeout`` s, counted from the last moment the robot
-    was seen ``on_its_way`` (bringing what is awaited: the wait lasts as long as that)."""
+    for ``seconds``: where it is then, or None after ``timeout`` s."""
     t_end = c.t + timeout
     last, since = None, None
     while True:
         v = c.view
-        if on_its_way(v):
-            t_end = c.t + timeout
         tcp = np.array(v.hand_pos, float)
         if not showing(v) or last is None or np.linalg.norm(tcp - last) > STILL_TOLERANCE:
             last, since = (tcp if showing(v) else None), c.t
@@ -418,12 +415,9 @@ def _robot_hand_still(c, showing: Callable[[RobotView], bool], seconds: float, t
 
 def _offered_still(c, object: str | None, timeout: float) -> Generator[None, None, bool]:
     """Wait until the robot holds ``object`` (any, when None) out and its hand has kept still for
-    OFFER_STILL s: a person reaches for a thing handed to them once it has arrived, not while it moves.
-    While the robot is seen carrying it (turning the glass first, say), it is on its way: the ``timeout``
-    counts from when it was last seen so."""
+    OFFER_STILL s: a person reaches for a thing handed to them once it has arrived, not while it moves."""
     offered = lambda v: v.offers is not None and (object is None or v.offers == object)  # noqa: E731
-    carried = lambda v: v.holds is not None and (object is None or v.holds == object)  # noqa: E731
-    return (yield from _robot_hand_still(c, offered, OFFER_STILL, timeout, on_its_way=carried)) is not None
+    return (yield from _robot_hand_still(c, offered, OFFER_STILL, timeout)) is not None
 
 
 def take_from_robot(c, object: str | None = None, timeout: float = 20.0) -> Gen:
