@@ -104,9 +104,8 @@ def own_table_spot(xy, shoulder: np.ndarray, reach: float, radius: float) -> np.
     the person with this ``shoulder`` and ``reach`` has it (`own_point` at the table top), kept on the
     table and on the person's half for an object of ``radius``."""
     x, y = own_point([xy[0], xy[1], layout.TABLE_Z], shoulder, reach)[:2]
-    xmin = -(layout.TABLE_HALF_X - radius - layout.EDGE_MARGIN)
-    ymax = layout.TABLE_HALF_Y - radius - layout.EDGE_MARGIN
-    return np.array([min(max(x, xmin), -(radius + layout.MIDLINE_MARGIN)), min(max(y, -ymax), ymax)])
+    xmax, ymax, inner = layout.standing_limits(radius)
+    return np.array([min(max(x, -xmax), -inner), min(max(y, -ymax), ymax)])
 
 
 def rot_z(angle: float) -> np.ndarray:

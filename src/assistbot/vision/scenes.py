@@ -69,9 +69,8 @@ class Labels:
 
 
 def _random_position(rng, name: str, zone: str) -> tuple[float, float]:
-    r = catalogue.radius(name)
-    xmax = layout.TABLE_HALF_X - r - layout.EDGE_MARGIN - 0.05
-    inner = r + layout.MIDLINE_MARGIN + 0.03
+    xmax, _, inner = layout.standing_limits(catalogue.radius(name))
+    xmax, inner = xmax - 0.05, inner + 0.03
     x = rng.uniform(inner, xmax - 0.02)
     y = rng.uniform(-0.30, 0.30)
     return (-x if zone == "HWS" else x, y)

@@ -140,11 +140,9 @@ def _parse_position(where: str, key: str, value: Any) -> tuple[float, float]:
 
 def _check_position(where: str, key: str, name: str, zone: str, pos: tuple[float, float]) -> None:
     x, y = pos
-    r = catalogue.radius(name)
-    xmax, ymax = layout.TABLE_HALF_X - r - layout.EDGE_MARGIN, layout.TABLE_HALF_Y - r - layout.EDGE_MARGIN
+    xmax, ymax, inner = layout.standing_limits(catalogue.radius(name))
     if not (-xmax <= x <= xmax and -ymax <= y <= ymax):
         raise UserError(where, key, f"({x:g}, {y:g}) is off the table; x must be within ±{xmax:.3f} and y within ±{ymax:.3f} m")
-    inner = r + layout.MIDLINE_MARGIN
     if zone == "HWS" and x > -inner:
         raise UserError(where, key, f"x = {x:g} is not in the HWS; the human's half needs x <= {-inner:.3f}")
     if zone == "RWS" and x < inner:

@@ -41,6 +41,12 @@ HANDOVER_ZONE_X = (-0.15, 0.08)
 STOPPER_PARK = (-0.30, 0.36)
 
 
+def standing_limits(radius: float) -> tuple[float, float, float]:
+    """Where an object of ``radius`` may stand (table x, y): |x| <= xmax and |y| <= ymax keep it EDGE_MARGIN
+    inside the table's edge, |x| >= inner keeps it MIDLINE_MARGIN clear of the middle line, in its half."""
+    return TABLE_HALF_X - radius - EDGE_MARGIN, TABLE_HALF_Y - radius - EDGE_MARGIN, radius + MIDLINE_MARGIN
+
+
 def zone_of(x: float) -> str:
     """The workspace a table x coordinate lies in."""
     return "HWS" if x < 0.0 else "RWS"
