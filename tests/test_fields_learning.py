@@ -19,14 +19,15 @@ def _field(items: list[str], beta: float = 1.0, **extra) -> dict:
 
 
 def hebbian_net(backend: str, rate: float = 2.0, decay: float = 1.0, k: float = 0.0, gate: str | None = "G.ok",
-                bounds=(0.0, 2.0), prior: float = 0.2, dt: float = 0.01, beta: float = 1.0) -> Network:
+                bounds=(0.0, 2.0), prior: float = 0.2, dt: float = 0.01, beta: float = 1.0,
+                table: dict | None = None) -> Network:
     learn = {"rate": rate, "decay": decay, "bounds": list(bounds)}
     if gate:
         learn["gate"] = gate
     return Network.from_dict({
         "dt": dt,
         "fields": {"pre": _field(["x", "y"], beta), "post": _field(["p", "q"], beta), "G": _field(["ok"], beta)},
-        "couplings": [{"source": "pre", "target": "post", "k": k, "table": {"p": {"x": prior}, "q": {"x": prior}},
+        "couplings": [{"source": "pre", "target": "post", "k": k, "table": table or {"p": {"x": prior}, "q": {"x": prior}},
                        "learn": learn}],
     }, backend=backend)
 
@@ -100,13 +101,14 @@ def test_only_an_active_source_items_weights_change_and_only_while_the_gate_is_o
 
 @pytest.mark.parametrize("backend", BACKENDS)
 def test_weights_stay_within_their_bounds(backend):
-    net = hebbian_net(backend, rate=50.0, decay=0.0, gate=None, bounds=(0.1, 0.9))
+    within = {t: {"x": 0.5, "y": 0.5} for t in ("p", "q")}
+    net = hebbian_net(backend, rate=50.0, decay=0.0, gate=None, bounds=(0.1, 0.9), table=within)
     net.set_stimulus("pre", "x", 8.0)
     net.set_stimulus("post", "p", 8.0)
     net.run(2.0)
     w = net.table("pre->post")
     assert w[0, 0] == 0.9 and w.min() >= 0.1
-    grown = hebbian_net(backend, rate=0.0, decay=50.0, gate=None, bounds=(0.1, 0.9))
+    grown = hebbian_net(backend, rate=0.0, decay=50.0, gate=None, bounds=(0.1, 0.9), table=within)
     grown.set_stimulus("pre", "x", 8.0)
     grown.run(2.0)
     assert grown.table("pre->post")[0, 0] == 0.1
@@ -255,6 +257,24 @@ def test_bad_memory_declarations_name_the_field_and_key(memory, key, words):
     with pytest.raises(FieldError) as err:
         Network.from_dict({"dt": 0.01, "fields": {"F": _field(["a"], memory=memory)}})
     assert err.value.key == key and words in err.value.message and err.value.where == "field 'F'"
+
+
+def test_weights_put_in_or_left_out_must_lie_within_the_bounds():
+    net = hebbian_net("numpy", bounds=(0.0, 2.0))
+    for bad, key in (({"p": {"x": 2.5}}, "table.p.x"), ([[0.1, 0.2], [0.3, -1.0]], "table.q.y"),
+                     ({"p": {"z": 0.5}}, "table.p.z"), ([[0.1, 0.2]], "table"), ([[0.1, np.nan], [0.0, 0.0]], "table.p.y")):
+        with pytest.raises(FieldError) as err:
+            net.set_table("pre->post", bad)
+        assert err.value.key == key, (bad, err.value)
+    assert np.array_equal(net.table("pre->post"), [[0.2, 0.0], [0.2, 0.0]]), "a refused table changes nothing"
+    # a weight left out is 0: below a lowest weight above 0, in the spec's prior as in set_table
+    with pytest.raises(FieldError, match=r"table\.p\.y: the weight 0 \(left out\) lies outside learn.bounds"):
+        hebbian_net("numpy", bounds=(0.1, 2.0))
+    net = hebbian_net("numpy", prior=0.5, bounds=(0.0, 2.0))
+    net.set_table("pre->post", {"q": {"y": 1.5}})
+    assert np.array_equal(net.table("pre->post"), [[0.0, 0.0], [0.0, 1.5]])
+    assert np.array_equal(net.spec.coupling("pre->post").matrix(net.spec.fields), [[0.5, 0.0], [0.5, 0.0]]), \
+        "the prior stays"
 
 
 def test_a_kernel_coupling_cannot_learn_and_a_fixed_table_has_no_weights_to_set():

@@ -3,8 +3,9 @@
 from __future__ import annotations
 
 import copy
+import dataclasses
 from pathlib import Path
-from typing import Any, Iterable, Mapping
+from typing import Any, Iterable, Mapping, cast
 
 import numpy as np
 
@@ -288,31 +289,13 @@ class Network:
 
     def set_table(self, coupling: str, table: Mapping[str, Mapping[str, float]] | np.ndarray) -> None:
         """Put weights into a learning coupling (e.g. read back from a file): a matrix (target x source items)
-        or {target item: {source item: weight}} (items left out are 0); they must lie within its bounds."""
+        or {target item: {source item: weight}} (items left out are 0); they must lie within its bounds.
+        Checked as a table in the spec is (`CouplingSpec.validate`), without changing the spec's prior."""
         i = self._learning_index(coupling)
-        c = self.spec.coupling(coupling)
-        src, tgt = self.spec.fields[c.source], self.spec.fields[c.target]
-        lo, hi = float(self._c.learning.low[i]), float(self._c.learning.high[i])
-        if isinstance(table, Mapping):
-            a = np.zeros((len(tgt.items), len(src.items)))
-            for t, row in table.items():
-                if t not in tgt.items or not isinstance(row, Mapping):
-                    raise FieldError(c.where, f"table.{t}", f"unknown item of target field '{tgt.name}'; known: {', '.join(tgt.items)}")
-                for s_item, v in row.items():
-                    if s_item not in src.items:
-                        raise FieldError(c.where, f"table.{t}.{s_item}",
-                                         f"unknown item of source field '{src.name}'; known: {', '.join(src.items)}")
-                    if isinstance(v, bool) or not isinstance(v, (int, float)) or not lo <= float(v) <= hi:
-                        raise FieldError(c.where, f"table.{t}.{s_item}", f"must be a number within [{lo:g}, {hi:g}], got {v!r}")
-                    a[tgt.items.index(t), src.items.index(s_item)] = float(v)
-        else:
-            a = np.asarray(table, dtype=float)
-            if a.shape != (len(tgt.items), len(src.items)):
-                raise FieldError(c.where, "table", f"matrix shape {a.shape} does not match (target items, source items) = "
-                                                   f"({len(tgt.items)}, {len(src.items)})")
-            if not np.all(np.isfinite(a)) or a.min() < lo or a.max() > hi:
-                raise FieldError(c.where, "table", f"weights must be finite and within [{lo:g}, {hi:g}]")
-        self._c.learning.table(self.state_w, i)[:] = a
+        # validate turns a matrix into the mapping, as it does for a spec's table
+        weights = dataclasses.replace(self.spec.coupling(coupling), table=cast(Any, table))
+        weights.validate(self.spec.fields)
+        self._c.learning.table(self.state_w, i)[:] = weights.matrix(self.spec.fields)
 
     def learned_tables(self) -> dict[str, dict[str, dict[str, float]]]:
         """Every learning coupling's weights now, {coupling: {target item: {source item: weight}}}: plain data

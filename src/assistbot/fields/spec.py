@@ -379,10 +379,12 @@ class CouplingSpec(_Coupling):
                 raise FieldError(w, "learn", f"must be a mapping with {', '.join(LEARN_KEYS)}")
             self.learn.validate(w, fields_by_name)
             lo, hi = self.learn.bounds
-            for t, row in clean.items():
-                for s, a in row.items():
+            for t in tgt.items:            # every weight, those left out (0) too
+                for s in src.items:
+                    a = clean.get(t, {}).get(s, 0.0)
                     if not lo <= a <= hi:
-                        raise FieldError(w, f"table.{t}.{s}", f"the prior {a:g} lies outside learn.bounds [{lo:g}, {hi:g}]")
+                        raise FieldError(w, f"table.{t}.{s}", f"the weight {a:g}{'' if a else ' (left out)'} lies outside "
+                                                             f"learn.bounds [{lo:g}, {hi:g}]")
 
     def matrix(self, fields_by_name: Mapping[str, FieldSpec]) -> np.ndarray:
         """a_mj as an array (target items x source items)."""
