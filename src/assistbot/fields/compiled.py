@@ -44,7 +44,7 @@ from dataclasses import dataclass
 import numpy as np
 import scipy.sparse as sp
 
-from assistbot.fields.spec import ContinuousCouplingSpec, FieldSpec, KernelSpec, NetworkSpec
+from assistbot.fields.spec import ContinuousCouplingSpec, FieldSpec, KernelSpec, NetworkSpec, gate_item
 
 TRUNCATION = 1e-10
 
@@ -272,8 +272,6 @@ def _memory_arrays(spec: NetworkSpec, fs: list[FieldSpec], sizes: np.ndarray) ->
 
 
 def _learning_arrays(spec: NetworkSpec, item_off: dict[str, int]) -> LearningArrays:
-    from assistbot.fields.spec import gate_item
-
     learned = [c for c in spec.couplings if c.learn is not None]
     rules = [c.learn for c in learned if c.learn is not None]
     priors = [c.matrix(spec.fields).ravel() for c in learned]
