@@ -39,6 +39,7 @@ def test_a_standing_object_is_a_target(executor):
 
 def _frames(executor, hands, t0=10.0):
     executor._hand_seen.clear()
+    executor._hand_holds.clear()
     for k, h in enumerate(hands):
         p = _percept(h)
         p.t = t0 + 0.1 * k
@@ -94,6 +95,22 @@ def test_a_hand_seen_holding_another_object_is_not_free_to_take_one(executor):
     assert not executor._hand_busy("glass")       # the glass itself: already taken, or being taken
 
 
+def test_a_hand_beside_an_object_standing_on_the_table_is_free(executor):
+    # read as holding the bottle, which the same frames see standing on the table: the hand that has just
+    # put it down rests beside it
+    _frames(executor, [_holding("bottle")] * 10)
+    assert not executor._hand_busy("glass")
+
+
 def test_a_single_misread_frame_does_not_make_the_hand_busy(executor):
     _frames(executor, [_holding(None)] * 7 + [_holding("glass")] + [_holding(None)] * 2)
     assert not executor._hand_busy("bottle")
+
+
+def test_a_hand_reaching_or_closing_is_placed_and_a_resting_one_is_not(executor):
+    executor.see(_percept(HandPercept("grasp_sg", (-0.06, -0.05, 0.17), end_hidden=True)))
+    assert executor._reaching_hand() == (-0.06, -0.05, 0.17)
+    executor.see(_percept(HandPercept("none", (-0.3, -0.2, 0.1))))
+    assert executor._reaching_hand() is None
+    executor.see(_percept(HandPercept("reach", (-0.1, -0.05, 0.2), seen=False)))
+    assert executor._reaching_hand() is None

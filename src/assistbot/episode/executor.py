@@ -41,6 +41,8 @@ STEADY_STATE = 0.3
 STATE_FRESH = 0.5
 #: postures in which the hand uses what it holds for itself
 USING = ("pour", "drink")
+#: postures of a hand reaching for an object or closing on it
+REACHING = ("reach", "grasp_ag", "grasp_sg")
 #: s after the hand was last seen pouring or drinking in which it offers nothing: it first puts down what it used
 AFTER_USE = 3.0
 
@@ -68,6 +70,7 @@ class RobotExecutor:
         self._away_since: float | None = None   # since when what the hand believes it holds is seen elsewhere
         self._lost = False                       # ... long enough: this action's grasp is not of it
         self._hand_seen: deque[tuple[float, HandPercept]] = deque()   # the frames of the last OFFER_WINDOW showing the hand
+        self._hand_holds: deque[tuple[float, str | None]] = deque()   # ... and what the hand holds in each
         self._used_at = -float("inf")   # when the hand was last seen using what it holds (`USING`)
         self._states: dict[str, tuple[str, float, float]] = {}   # object -> (state, first, last frame read so)
 
@@ -167,9 +170,10 @@ class RobotExecutor:
 
     def _hand_busy(self, obj: str | None) -> bool:
         """Most of the frames of the last OFFER_WINDOW that show the person's hand show it holding an object
-        other than ``obj`` (one frame's misreading does not count)."""
-        frames = [h for _, h in self._hand_seen]
-        other = sum(h.object_in_hand is not None and h.object_in_hand != obj for h in frames)
+        other than ``obj`` (one frame's misreading does not count); a hand read as holding an object that the
+        same frame sees standing on the table is beside it (it has just put it down), not holding it."""
+        frames = [held for _, held in self._hand_holds]
+        other = sum(held is not None and held != obj for held in frames)
         return bool(frames) and 2 * other > len(frames)
 
     def _seen_elsewhere(self) -> bool:
@@ -191,6 +195,17 @@ class RobotExecutor:
         if self._open_hand is None or now - self._open_hand[0] > OPEN_HAND_MEMORY:
             return None
         return self._open_hand[1]
+
+    def _reaching_hand(self) -> tuple[float, float, float] | None:
+        """Where the person's hand is seen in this frame reaching or closing on something (table x, y, z); placed
+        short of where it is when the robot's own arm hides its end. What it reaches for is for the caller to
+        judge by how near it is: vision names the object nearest the hand, which need not be the one in the
+        robot's hand held out to it."""
+        p = self._percept
+        h = p.hand if p is not None else None
+        if h is None or not h.seen or h.posture not in REACHING:
+            return None
+        return h.position
 
     def _partner_done(self, t: float) -> bool:
         """The partner's hand seen at rest (no object-directed posture, nothing in it) or not seen at all,
@@ -245,7 +260,8 @@ class RobotExecutor:
                              lifted=lambda: self._lifted(aim), partner_hand=self._partner_hand,
                              identify=lambda: self._held_out_name, seen_elsewhere=self._seen_elsewhere,
                              offered=self._offered, hand_busy=lambda: self._hand_busy(self.primitive.object),
-                             seen_state=self._seen_state)
+                             seen_state=self._seen_state,
+                             reaching_hand=self._reaching_hand)
         # hidden right now (often behind the robot's own arm): start from where it was last seen;
         # the gaze goes there and the target field takes over once the cameras see it again
         self.primitive.start(self._locate(aim))
@@ -259,10 +275,15 @@ class RobotExecutor:
             self._held_out_name = h.object_in_hand
         if h.seen:
             self._hand_seen.append((percept.t, h))
+            o = percept.objects.get(h.object_in_hand) if h.object_in_hand else None
+            standing = o is not None and o.seen and o.position[2] < STANDING_Z
+            self._hand_holds.append((percept.t, None if standing else h.object_in_hand))
             if h.posture in USING and not h.end_hidden:
                 self._used_at = percept.t
         while self._hand_seen and self._hand_seen[0][0] <= percept.t - OFFER_WINDOW:
             self._hand_seen.popleft()
+        while self._hand_holds and self._hand_holds[0][0] <= percept.t - OFFER_WINDOW:
+            self._hand_holds.popleft()
         held = percept.objects.get(h.object_in_hand) if h.seen and h.object_in_hand else None
         if held is not None and held.seen:
             self._held_out_seen = True

@@ -46,6 +46,14 @@ STILL_TOLERANCE = 0.01
 #: gives way before the robot has let go is taken again, TAKE_TRIES in all
 OFFER_STILL = 0.5
 TAKE_TRIES = 2
+#: how a reach for what the robot holds out that stopped short of it ends (the arm's limit reached before the
+#: object, or the fingers closing on nothing there); the hand then waits BROUGHT_WAIT s for the robot to bring
+#: the object to it, SHORT_TRIES times at most
+SHORT_OF = ("could not reach the", "the grip on the")
+#: m an object must have moved while the hand went to its approach pose for the hand to aim anew
+REAIM = 0.01
+BROUGHT_WAIT = 5.0
+SHORT_TRIES = 3
 #: the hand's height (world z) while it holds an object just taken from the robot, in toward the body
 TAKEN_Z = 0.90
 #: the farthest table x at which the person sets an object down under the robot's hand
@@ -221,6 +229,9 @@ def grasp(c, object: str, grip: str = "ag", lift: bool = True, hold_out: bool = 
     c.arm.set_posture("open")
     if not (yield from _move(c, pre, R)):
         return False, "could not reach the approach pose"
+    if np.linalg.norm(grasp_point(c, object, grip) - target) > REAIM:
+        # it has moved meanwhile (the robot holding it out brings it nearer): the eyes follow it
+        target = grasp_point(c, object, grip)
     if not (yield from _move(c, target, R, tol=0.02)):
         return False, f"could not reach the {object}"
     yield from _wait(c, 0.15)
@@ -420,6 +431,16 @@ def _offered_still(c, object: str | None, timeout: float) -> Generator[None, Non
     return (yield from _robot_hand_still(c, offered, OFFER_STILL, timeout)) is not None
 
 
+def _brought_nearer(c, object: str, offered_at: np.ndarray) -> Generator[None, None, bool]:
+    """The hand stopped short of what the robot holds out (as far as this arm goes): it stays there, open, up
+    to BROUGHT_WAIT s for the robot to bring the object to it (its hand seen moving from ``offered_at``, where
+    it was when this reach began, then still again)."""
+    c.arm.set_posture("open")
+    moved = yield from _wait_until(c, lambda: float(np.linalg.norm(np.array(c.view.hand_pos, float) - offered_at)) > STILL_TOLERANCE,
+                                   BROUGHT_WAIT)
+    return bool(moved) and (yield from _offered_still(c, object, BROUGHT_WAIT))
+
+
 def take_from_robot(c, object: str | None = None, timeout: float = 20.0) -> Gen:
     """Take the object the robot holds out once it has arrived: reach it with a side grip, close, wait for
     the robot to let go. A grip that gives way before the robot has let go (it pulled or moved on) is
@@ -427,8 +448,14 @@ def take_from_robot(c, object: str | None = None, timeout: float = 20.0) -> Gen:
     if not (yield from _offered_still(c, object, timeout)):
         return False, "the robot offers nothing"
     obj = c.view.offers
+    short = 0
     for _ in range(TAKE_TRIES):
+        offered_at = np.array(c.view.hand_pos, float)
         ok, why = yield from grasp(c, obj, "sg", lift=False)
+        while not ok and why.startswith(SHORT_OF) and short < SHORT_TRIES and (yield from _brought_nearer(c, obj, offered_at)):
+            short += 1
+            offered_at = np.array(c.view.hand_pos, float)
+            ok, why = yield from grasp(c, obj, "sg", lift=False)
         if not ok:
             return False, why
         # the robot lets go, or the grip gives way (felt: the hand holds nothing any more)

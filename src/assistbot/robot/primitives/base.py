@@ -52,7 +52,8 @@ class Primitive:
                  seen_elsewhere: Callable[[], bool] | None = None,
                  offered: Callable[[], bool] | None = None,
                  hand_busy: Callable[[], bool] | None = None,
-                 seen_state: Callable[[str], str | None] | None = None) -> None:
+                 seen_state: Callable[[str], str | None] | None = None,
+                 reaching_hand: Callable[[], tuple[float, float, float] | None] | None = None) -> None:
         """``obj``: the object acted on ("bottle", "glass", "held_out" for whatever the human holds out).
 
         Callbacks (all from perception, never from the physics' ground truth):
@@ -74,6 +75,8 @@ class Primitive:
                              the object acted on: it is not free to take that; without perception: False.
           seen_state(name)   the state of object ``name`` ("inverted", "open", ...) as the cameras have
                              seen it steadily of late, or None (not seen, or read one way and another).
+          reaching_hand()    table (x, y, z) of the person's hand as seen in this frame reaching or
+                             closing on something, or None.
         """
         self.robot = robot
         self.object = obj
@@ -88,6 +91,7 @@ class Primitive:
         self.offered = offered or (lambda: True)
         self.hand_busy = hand_busy or (lambda: False)
         self.seen_state = seen_state or (lambda name: None)
+        self.reaching_hand = reaching_hand or (lambda: None)
         self._offer: np.ndarray | None = None
         self._failure: Progress | None = None    # a failure being ended safely (Phase.fallback)
         self.released: tuple[str, tuple[float, float]] | None = None  # the object let go of last, and where

@@ -11,7 +11,7 @@ from assistbot.robot.phases import BackOff, Move, Open, Phase, SetCarrying, Wait
 from assistbot.robot.placement import shared_spot
 from assistbot.robot.primitives.carry_over import CarryOver
 from assistbot.robot.primitives.geometry import GRASP_HEIGHT, grasp_pose_at
-from assistbot.robot.primitives.places import HOLD_OUT_XY, SHARED_REACH, offer_point
+from assistbot.robot.primitives.places import HOLD_OUT_XY, SHARED_REACH, meet_goal, offer_point
 from assistbot.robot.primitives.putting_down import put_down_at
 from assistbot.robot.primitives.reaching import retract_phases
 from assistbot.task import OBJECTS
@@ -60,9 +60,10 @@ def set_down_for_the_person(p: Primitive) -> list[Phase]:
 
 
 def give(timeout: float) -> list[Phase]:
-    """The object is held out: wait until the human holds it, let go, withdraw. Not taken in time, it is set
-    down on the table within the person's reach before the hand-over is reported failed."""
-    wait = WaitForTake(OFFER_PHASE, timeout, "the human did not take it")
+    """The object is held out: wait until the human holds it (brought to their hand if it stops short of it:
+    `meet_goal`), let go, withdraw. Not taken in time, it is set down on the table within the person's reach
+    before the hand-over is reported failed."""
+    wait = WaitForTake(OFFER_PHASE, timeout, "the human did not take it", meet=meet_goal)
     wait.fallback = set_down_for_the_person
     return [
         wait,

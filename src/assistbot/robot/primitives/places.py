@@ -4,12 +4,14 @@ from __future__ import annotations
 
 from typing import TYPE_CHECKING
 
+import mink
 import numpy as np
 
 from assistbot import catalogue
+from assistbot.robot import poses
 from assistbot.robot.controller import REACH, TCP_MIN_X
 from assistbot.robot.placement import put_down_spot
-from assistbot.robot.primitives.geometry import GRASP_HEIGHT, REACH_SLACK
+from assistbot.robot.primitives.geometry import GRASP_HEIGHT, RADIUS, REACH_SLACK, TCP_CYLINDER_RADIUS
 from assistbot.task import OBJECTS
 from assistbot.world.layout import TABLE_Z
 
@@ -29,6 +31,11 @@ OFFER_BASE = (0.05, 0.12)
 #: m within REACH, and on the robot's side of TCP_MIN_X, that an offered object's centre is kept
 OFFER_REACH_MARGIN = 0.03
 OFFER_X_MARGIN = 0.01
+#: m the object held out is brought nearer a person whose reach stopped short of it, at a time; the least
+#: move worth making; and the farthest from it (m) a hand seen stopped may be and still reach for it
+MEET_STEP = 0.06
+MEET_MIN = 0.01
+MEET_MAX = 0.20
 
 
 def offer_point(prim: "Primitive") -> np.ndarray:
@@ -44,17 +51,49 @@ def offer_point(prim: "Primitive") -> np.ndarray:
         else:
             base = float(np.clip(float(hand[2]) - 0.5 * catalogue.height(obj), *OFFER_BASE))
             c = np.array([float(hand[0]), float(hand[1]), TABLE_Z + base + GRASP_HEIGHT[obj]])
-        # out of reach: brought back toward the robot at the same height (a hand takes it where it was shown)
-        sh, reach = prim.robot.shoulder, REACH - OFFER_REACH_MARGIN
-        c[0] = max(c[0], TCP_MIN_X + OFFER_X_MARGIN)
-        flat = reach ** 2 - (c[2] - sh[2]) ** 2
-        off = c[:2] - sh[:2]
-        if float(np.linalg.norm(c - sh)) > reach and flat > 0:
-            c[:2] = sh[:2] + off * np.sqrt(flat) / float(np.linalg.norm(off))
-        elif float(np.linalg.norm(c - sh)) > reach:
-            c = sh + (c - sh) * reach / float(np.linalg.norm(c - sh))
-        prim._offer = c
+        prim._offer = within_offer_limits(prim, c)
     return prim._offer
+
+
+def within_offer_limits(prim: "Primitive", c: np.ndarray) -> np.ndarray:
+    """An offered object's centre ``c`` (world, at grasp height) kept on the robot's side of TCP_MIN_X and
+    within its reach: out of reach, brought back toward the robot at the same height (a hand takes it
+    where it was shown)."""
+    c = np.array(c, float)
+    sh, reach = prim.robot.shoulder, REACH - OFFER_REACH_MARGIN
+    c[0] = max(c[0], TCP_MIN_X + OFFER_X_MARGIN)
+    flat = reach ** 2 - (c[2] - sh[2]) ** 2
+    off = c[:2] - sh[:2]
+    if float(np.linalg.norm(c - sh)) > reach and flat > 0:
+        c[:2] = sh[:2] + off * np.sqrt(flat) / float(np.linalg.norm(off))
+    elif float(np.linalg.norm(c - sh)) > reach:
+        c = sh + (c - sh) * reach / float(np.linalg.norm(c - sh))
+    return c
+
+
+def meet_goal(prim: "Primitive", hand) -> mink.SE3 | None:
+    """The hand pose that brings the object held out nearer the person, whose hand has been seen reaching for it
+    and stopping at table ``hand`` (x, y, z) without taking it: the object MEET_STEP farther toward the
+    person's side, and by as much at most toward the hand's height and side, the robot's hand turned as it is,
+    within `within_offer_limits`. Not all the way to the hand as seen: where the robot's arm hides the hand's
+    end vision places the hand several cm off, even at the object; the person's reach is from their side, and
+    the hand's side and height say the rest. None when the hand is too far off to be reaching for it
+    (MEET_MAX) or the arm cannot bring the object nearer."""
+    tcp = prim.robot.tcp_pose()
+    obj = prim.object
+    up = np.array([0.0, 0.0, GRASP_HEIGHT[obj] - 0.5 * catalogue.height(obj)])   # the middle to the grasp height
+    centre = tcp.translation() + poses.approach_axis(tcp.rotation()) * (RADIUS[obj] - TCP_CYLINDER_RADIUS)
+    middle = centre - up
+    at = np.asarray(hand, float) + np.array([0.0, 0.0, TABLE_Z])
+    if float(np.linalg.norm(at - middle)) > MEET_MAX:
+        return None
+    to = middle + np.array([-MEET_STEP, *np.clip(at[1:] - middle[1:], -MEET_STEP, MEET_STEP)])
+    to[2] = max(to[2], TABLE_Z + OFFER_BASE[0] + 0.5 * catalogue.height(obj))
+    c = within_offer_limits(prim, to + up)
+    if float(np.linalg.norm(c - centre)) < MEET_MIN:
+        return None
+    prim._offer = c
+    return poses.pose(tcp.rotation(), tcp.translation() + (c - centre))
 
 
 def free_rws_spot(p: "Primitive") -> np.ndarray:
