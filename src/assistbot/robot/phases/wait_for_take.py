@@ -21,14 +21,18 @@ class WaitForTake(WaitFor):
     fingers hide the object in the robot's hand), and a hand let go of too soon drops the object.
 
     ``meet(prim, hand)``: the pose that brings the object to the person's hand seen at ``hand``, or None.
-    A hand seen reaching for the object and keeping still for MEET_STILL s without a pull being felt has
-    gone as far as this person reaches: the object is brought nearer them (`meet_goal`, MEET_SECONDS),
-    MEET_TRIES times at most, as a person hands a thing to someone who cannot quite reach it."""
+    A hand seen reaching for the object and keeping still for MEET_STILL s without touching it (felt: the
+    wrist's force within TOUCH_N of rest) has gone as far as this person reaches: the object is brought
+    nearer them (`meet_goal`, MEET_SECONDS), MEET_TRIES times at most, as a person hands a thing to someone
+    who cannot quite reach it."""
 
     PULL_N = 0.8
     REST_SECONDS = 0.3   # the force at rest is read after this
     FELT_TICKS = 2       # in a row: one jolt is not a pull
-    MEET_STILL = 1.0     # s the reaching hand keeps still before the object is brought to it
+    MEET_STILL = 2.5     # s the reaching hand keeps still before the object is brought to it (longer than
+                         # a reach pauses on its way, at the approach pose)
+    TOUCH_N = 0.3        # N the wrist's force moves from rest when the person's hand touches the object: a
+                         # hand at it, holding it, is not brought anything (moving it would pull it away)
     STILL_WITHIN = 0.02   # m from the median of those frames that STILL_SHARE of them lie within (the posture
     STILL_SHARE = 0.7     # read flickers from frame to frame, and each class places the hand a little apart)
     SEEN_SHARE = 0.7     # of the control ticks of those MEET_STILL s that must show the reaching hand
@@ -94,7 +98,8 @@ class WaitForTake(WaitFor):
             self._felt += 1
         else:
             self._felt = 0
-        if self.meet is not None and self._meets < self.MEET_TRIES and self._felt == 0 and self._rest is not None:
+        touched = self._rest is not None and float(np.linalg.norm(force - self._rest)) > self.TOUCH_N
+        if self.meet is not None and self._meets < self.MEET_TRIES and not touched and self._rest is not None:
             hand = self._stopped_hand(prim, t)
             goal = self.meet(prim, hand) if hand is not None else None
             if goal is not None:
