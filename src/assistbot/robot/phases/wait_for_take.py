@@ -1,4 +1,4 @@
-"""Holding an object out until the person takes it: seen holding it, or felt pulling; brought to a hand that
+"""Holding an object out until the person takes it: seen holding it, or felt pulling; brought nearer a hand that
 stops short of it."""
 
 from __future__ import annotations
@@ -20,7 +20,7 @@ class WaitForTake(WaitFor):
     Not seen: the cameras read a hand closing around the object as holding it before it does (the
     fingers hide the object in the robot's hand), and a hand let go of too soon drops the object.
 
-    ``meet(prim, hand)``: the pose that brings the object to the person's hand seen at ``hand``, or None.
+    ``meet(prim, hand)``: the pose that brings the object nearer the person's hand seen at ``hand``, or None.
     A hand seen reaching for the object and keeping still for MEET_STILL s without touching it (felt: the
     wrist's force within TOUCH_N of rest) has gone as far as this person reaches: the object is brought
     nearer them (`meet_goal`, MEET_SECONDS), MEET_TRIES times at most, as a person hands a thing to someone

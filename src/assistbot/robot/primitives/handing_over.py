@@ -60,7 +60,7 @@ def set_down_for_the_person(p: Primitive) -> list[Phase]:
 
 
 def give(timeout: float) -> list[Phase]:
-    """The object is held out: wait until the human holds it (brought to their hand if it stops short of it:
+    """The object is held out: wait until the human holds it (brought nearer a hand that stops short of it:
     `meet_goal`), let go, withdraw. Not taken in time, it is set down on the table within the person's reach
     before the hand-over is reported failed."""
     wait = WaitForTake(OFFER_PHASE, timeout, "the human did not take it", meet=meet_goal)
