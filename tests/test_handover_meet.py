@@ -1,5 +1,5 @@
 """An object held out farther than the person's hand goes: their reach stops short of it, the robot sees the
-hand stop there and brings the object to it, and the person takes it. Not seeing the hand, the robot cannot,
+hand stop there and brings the object nearer, and the person takes it. Not seeing the hand, the robot cannot,
 and the person does not take it. In the physics; perception is a stand-in that reports the person's grasp
 site while their hand reaches for the glass, as vision reports a hand reaching for an object."""
 
@@ -54,12 +54,12 @@ def _takes(human):
     return [b for b in human.done if b.name == "take_from_robot"]
 
 
-def test_the_robot_brings_the_object_to_a_hand_that_stops_short_of_it():
+def test_the_robot_brings_the_object_nearer_a_hand_that_stops_short_of_it():
     w, human, pr, seen = _offer(see_hand=True)
     assert pr.status is P.Status.SUCCEEDED, pr.reason
     takes = _takes(human)
     assert takes and takes[-1].status == "succeeded", takes[-1].reason if takes else human.done
-    # brought to the hand: nearer the person, and up to where the hand stopped (beyond the reach it has lower)
+    # brought nearer the person, and up toward where the hand stopped (beyond the reach it has lower down)
     moved = seen["last"] - seen["first"]
     assert moved[0] < -0.01 and np.linalg.norm(moved) > 0.03, seen
     st = w.state()
