@@ -39,7 +39,6 @@ def test_a_standing_object_is_a_target(executor):
 
 def _frames(executor, hands, t0=10.0):
     executor._hand_seen.clear()
-    executor._hand_holds.clear()
     for k, h in enumerate(hands):
         p = _percept(h)
         p.t = t0 + 0.1 * k

@@ -69,8 +69,8 @@ class RobotExecutor:
         self._held_out_name: str | None = None  # what the person was last seen holding, during this action
         self._away_since: float | None = None   # since when what the hand believes it holds is seen elsewhere
         self._lost = False                       # ... long enough: this action's grasp is not of it
-        self._hand_seen: deque[tuple[float, HandPercept]] = deque()   # the frames of the last OFFER_WINDOW showing the hand
-        self._hand_holds: deque[tuple[float, str | None]] = deque()   # ... and what the hand holds in each
+        # the frames of the last OFFER_WINDOW showing the hand, each with what the hand holds in it (`_hand_busy`)
+        self._hand_seen: deque[tuple[float, HandPercept, str | None]] = deque()
         self._used_at = -float("inf")   # when the hand was last seen using what it holds (`USING`)
         self._states: dict[str, tuple[str, float, float]] = {}   # object -> (state, first, last frame read so)
 
@@ -160,7 +160,7 @@ class RobotExecutor:
         benefit of the doubt."""
         if self._percept is not None and self._percept.t - self._used_at < AFTER_USE:
             return False
-        frames = [h for _, h in self._hand_seen if not h.end_hidden]
+        frames = [h for _, h, _ in self._hand_seen if not h.end_hidden]
         if not frames:
             return True
         ends = np.array([h.end for h in frames], float)
@@ -172,7 +172,7 @@ class RobotExecutor:
         """Most of the frames of the last OFFER_WINDOW that show the person's hand show it holding an object
         other than ``obj`` (one frame's misreading does not count); a hand read as holding an object that the
         same frame sees standing on the table is beside it (it has just put it down), not holding it."""
-        frames = [held for _, held in self._hand_holds]
+        frames = [held for _, _, held in self._hand_seen]
         other = sum(held is not None and held != obj for held in frames)
         return bool(frames) and 2 * other > len(frames)
 
@@ -274,16 +274,13 @@ class RobotExecutor:
         if h.seen and h.object_in_hand:
             self._held_out_name = h.object_in_hand
         if h.seen:
-            self._hand_seen.append((percept.t, h))
             o = percept.objects.get(h.object_in_hand) if h.object_in_hand else None
             standing = o is not None and o.seen and o.position[2] < STANDING_Z
-            self._hand_holds.append((percept.t, None if standing else h.object_in_hand))
+            self._hand_seen.append((percept.t, h, None if standing else h.object_in_hand))
             if h.posture in USING and not h.end_hidden:
                 self._used_at = percept.t
         while self._hand_seen and self._hand_seen[0][0] <= percept.t - OFFER_WINDOW:
             self._hand_seen.popleft()
-        while self._hand_holds and self._hand_holds[0][0] <= percept.t - OFFER_WINDOW:
-            self._hand_holds.popleft()
         held = percept.objects.get(h.object_in_hand) if h.seen and h.object_in_hand else None
         if held is not None and held.seen:
             self._held_out_seen = True

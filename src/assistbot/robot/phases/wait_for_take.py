@@ -91,15 +91,14 @@ class WaitForTake(WaitFor):
             self._bring(prim, dt, t)
             return Status.RUNNING, ""
         force = prim.robot.gripper.wrist_force()
+        off_rest: float | None = None   # N the wrist's force lies from rest, once that is read
         if self._rest is None:
             if t >= self._rest_at:
-                self._rest = force
-        elif np.linalg.norm(force - self._rest) > self.PULL_N:
-            self._felt += 1
+                self._rest, off_rest = force, 0.0
         else:
-            self._felt = 0
-        touched = self._rest is not None and float(np.linalg.norm(force - self._rest)) > self.TOUCH_N
-        if self.meet is not None and self._meets < self.MEET_TRIES and not touched and self._rest is not None:
+            off_rest = float(np.linalg.norm(force - self._rest))
+            self._felt = self._felt + 1 if off_rest > self.PULL_N else 0
+        if self.meet is not None and self._meets < self.MEET_TRIES and off_rest is not None and off_rest <= self.TOUCH_N:
             hand = self._stopped_hand(prim, t)
             goal = self.meet(prim, hand) if hand is not None else None
             if goal is not None:

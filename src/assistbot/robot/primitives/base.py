@@ -14,10 +14,9 @@ from typing import Callable
 import numpy as np
 
 from assistbot.interfaces import Status
-from assistbot.robot import poses
 from assistbot.robot.controller import RobotController
 from assistbot.robot.phases import BackOff, Grip, Phase
-from assistbot.robot.primitives.geometry import GRASP_HEIGHT, RADIUS, TCP_CYLINDER_RADIUS
+from assistbot.robot.primitives.geometry import GRASP_HEIGHT, RADIUS, held_centre
 from assistbot.robot.primitives.putting_down import set_down_what_is_carried
 from assistbot.robot.progress import Progress
 from assistbot.robot.target_field import TargetField
@@ -241,6 +240,6 @@ class Primitive:
         obj = self.object
         if obj not in RADIUS or obj == "held_out" or pose.translation()[2] > TABLE_Z + GRASP_HEIGHT[obj] + IN_THE_AIR_ABOVE:
             return      # let go of in the air: into the person's hand
-        c = pose.translation() + poses.approach_axis(pose.rotation()) * (RADIUS[obj] - TCP_CYLINDER_RADIUS)
+        c = held_centre(pose, obj)
         self.released = (obj, (float(c[0]), float(c[1])))
         self._let_go_of = obj

@@ -52,6 +52,12 @@ def held_grasp_height(obj: str, hand: "Gripper") -> float:
     return 0.5 * (hand.reach_below + top - hand.reach_above)
 
 
+def held_centre(pose: mink.SE3, obj: str) -> np.ndarray:
+    """Where the axis of ``obj``, held in a side grasp with the TCP at ``pose``, passes at grasp height (world):
+    beyond the TCP along the approach (the inverse of `grasp_pose_at`)."""
+    return pose.translation() + poses.approach_axis(pose.rotation()) * (RADIUS[obj] - TCP_CYLINDER_RADIUS)
+
+
 def grasp_pose_at(prim: Primitive, centre: np.ndarray, obj: str, back: float = 0.0, roll: float = 0.0) -> mink.SE3:
     """Side grasp of ``obj`` whose axis passes through ``centre`` (world, at grasp height)."""
     rot = poses.side_rotation(centre, prim.robot.shoulder)

@@ -11,7 +11,7 @@ from assistbot import catalogue
 from assistbot.robot import poses
 from assistbot.robot.controller import REACH, TCP_MIN_X
 from assistbot.robot.placement import put_down_spot
-from assistbot.robot.primitives.geometry import GRASP_HEIGHT, RADIUS, REACH_SLACK, TCP_CYLINDER_RADIUS
+from assistbot.robot.primitives.geometry import GRASP_HEIGHT, REACH_SLACK, held_centre
 from assistbot.task import OBJECTS
 from assistbot.world.layout import TABLE_Z
 
@@ -82,7 +82,7 @@ def meet_goal(prim: "Primitive", hand) -> mink.SE3 | None:
     tcp = prim.robot.tcp_pose()
     obj = prim.object
     up = np.array([0.0, 0.0, GRASP_HEIGHT[obj] - 0.5 * catalogue.height(obj)])   # the middle to the grasp height
-    centre = tcp.translation() + poses.approach_axis(tcp.rotation()) * (RADIUS[obj] - TCP_CYLINDER_RADIUS)
+    centre = held_centre(tcp, obj)
     middle = centre - up
     at = np.asarray(hand, float) + np.array([0.0, 0.0, TABLE_Z])
     if float(np.linalg.norm(at - middle)) > MEET_MAX:
