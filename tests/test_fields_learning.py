@@ -99,6 +99,55 @@ def test_only_an_active_source_items_weights_change_and_only_while_the_gate_is_o
     assert np.abs(w[:, 1]).max() < 1e-3, "the inactive source item's weights stay where they were"
 
 
+def traced_hebbian_net(backend: str, sources: list[str] | None = None, prior: float = 0.2) -> Network:
+    memory = {"tau_build": 0.1, "tau_decay": 1.0, "amplitude": 0.0, "threshold": 0.5}
+    learn = {"rate": 2.0, "decay": 1.0, "gate": "G.ok", "bounds": [0.0, 2.0], "traces": True}
+    if sources is not None:
+        learn["sources"] = sources
+    return Network.from_dict({
+        "dt": 0.01,
+        "fields": {"pre": _field(["x", "y"], 4.0, memory=memory), "post": _field(["p", "q"], 4.0, memory=memory),
+                   "G": _field(["ok"], 4.0)},
+        "couplings": [{"source": "pre", "target": "post", "k": 0.0, "learn": learn,
+                       "table": {"p": {"x": prior, "y": -1.0}, "q": {"x": prior, "y": -1.0}}}],
+    }, backend=backend)
+
+
+@pytest.mark.parametrize("backend", BACKENDS)
+def test_a_rule_on_traces_learns_who_was_active_together_when_the_gate_opens_later(backend):
+    """pre x with post p, then both at rest (their traces hold), then the gate: x -> p grows, x -> q fades,
+    although neither field is active while the gate is open; y's weights (not a learning source) stay."""
+    net = traced_hebbian_net(backend, sources=["x"])
+    net.set_stimulus("pre", "x", 8.0)
+    net.set_stimulus("post", "p", 8.0)
+    net.run(1.0)
+    net.clear_stimuli()
+    net.run(2.0)                       # both fields back at rest: no presence left, the traces hold
+    assert net.presence("pre").max() < 0.01 and net.presence("post").max() < 0.01
+    assert np.allclose(net.table("pre->post"), [[0.2, -1.0], [0.2, -1.0]], atol=1e-3), "gate shut, no change"
+    net.set_stimulus("G", "ok", 8.0)
+    net.run(2.0)
+    w = net.table("pre->post")
+    assert w[0, 0] > 1.5 and w[1, 0] < 0.05
+    assert w[0, 1] == -1.0 and w[1, 1] == -1.0
+
+
+@pytest.mark.parametrize("backend", BACKENDS)
+def test_a_rule_on_traces_one_step_against_the_formula(backend):
+    rng = np.random.default_rng(4)
+    net = traced_hebbian_net(backend, sources=["x"])
+    net.state_u[:] = rng.uniform(-4.0, 4.0, net.state_u.size)
+    net.state_m[:] = rng.uniform(0.0, 1.0, net.state_m.size)
+    net.set_table("pre->post", {"p": {"x": 0.7, "y": -1.0}, "q": {"x": 1.3, "y": -1.0}})
+    w0 = net.table("pre->post")
+    g = net.presence("G")[0]
+    net.step(1)
+    m = {f: net.state_m[net.item_state_indices(f)] for f in ("pre", "post")}   # the traces as this step built them
+    expected = w0 + 0.01 * g * m["pre"][None, :] * (2.0 * m["post"][:, None] - 1.0 * w0)
+    expected[:, 1] = -1.0
+    assert np.allclose(net.table("pre->post"), np.clip(expected, [[0.0, -1.0]], 2.0), atol=1e-13)
+
+
 @pytest.mark.parametrize("backend", BACKENDS)
 def test_weights_stay_within_their_bounds(backend):
     within = {t: {"x": 0.5, "y": 0.5} for t in ("p", "q")}
@@ -238,6 +287,10 @@ def test_learned_weights_round_trip_survive_reset_and_parameter_changes_and_forg
     ({"learn": {"rate": 1.0, "bounds": [0.0, 0.1]}}, "table.p.x", "outside learn.bounds"),
     ({"learn": {"rate": 1.0, "decay": 500.0}}, "learn.decay", "1/dt"),
     ({"learn": {"speed": 1.0}}, "learn.speed", "allowed"),
+    ({"learn": {"rate": 1.0, "traces": True}}, "learn.traces", "no 'memory'"),
+    ({"learn": {"rate": 1.0, "traces": "yes"}}, "learn.traces", "true or false"),
+    ({"learn": {"rate": 1.0, "sources": ["z"]}}, "learn.sources", "unknown item"),
+    ({"learn": {"rate": 1.0, "sources": "x"}}, "learn.sources", "a list"),
 ])
 def test_bad_learning_declarations_name_the_coupling_and_key(change, key, words):
     spec = {"dt": 0.01, "fields": {"pre": _field(["x"]), "post": _field(["p"]), "G": _field(["ok"])},

@@ -245,6 +245,8 @@ class LearningArrays:
     target: np.ndarray  # (L,) first item of the target field
     n_target: np.ndarray
     gate: np.ndarray    # (L,) item index of the gate, -1 for none
+    traces: np.ndarray  # (L,) bool: the rule reads the memory traces, not the outputs
+    learns: np.ndarray  # flat like the weights: 1.0 where the weight learns, 0.0 where it keeps its prior
     k: np.ndarray
     rate: np.ndarray
     decay: np.ndarray
@@ -275,6 +277,8 @@ def _learning_arrays(spec: NetworkSpec, item_off: dict[str, int]) -> LearningArr
     learned = [c for c in spec.couplings if c.learn is not None]
     rules = [c.learn for c in learned if c.learn is not None]
     priors = [c.matrix(spec.fields).ravel() for c in learned]
+    learns = [np.tile([float(rule.learns(s)) for s in spec.fields[c.source].items], len(spec.fields[c.target].items))
+              for c, rule in zip(learned, rules)]
     gates = []
     for c, rule in zip(learned, rules):
         if rule.gate is None:
@@ -291,6 +295,8 @@ def _learning_arrays(spec: NetworkSpec, item_off: dict[str, int]) -> LearningArr
         target=ints([item_off[c.target] for c in learned]),
         n_target=ints([len(spec.fields[c.target].items) for c in learned]),
         gate=ints(gates),
+        traces=np.array([r.traces for r in rules], dtype=np.bool_),
+        learns=np.concatenate(learns) if learns else np.zeros(0),
         k=floats([c.k for c in learned]),
         rate=floats([r.rate for r in rules]),
         decay=floats([r.decay for r in rules]),

@@ -99,7 +99,8 @@ class Network:
                     j = old_L.names.index(name)
                     before = old_L.table(old_w, j)
                     if before.shape == L.table(self.state_w, i).shape:
-                        L.table(self.state_w, i)[:] = np.clip(before, L.low[i], L.high[i])
+                        learns = L.table(L.learns, i) > 0    # a weight kept at its prior need not lie within the bounds
+                        L.table(self.state_w, i)[:] = np.where(learns, np.clip(before, L.low[i], L.high[i]), before)
             for key, amp in getattr(self, "_item_stimuli", {}).items():
                 self._stim_item[self._item(*key)] = amp
         if fresh:

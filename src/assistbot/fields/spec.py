@@ -278,7 +278,7 @@ class _Coupling:
         return fields_by_name[self.source], fields_by_name[self.target]
 
 
-LEARN_KEYS = ["rate", "decay", "gate", "bounds"]
+LEARN_KEYS = ["rate", "decay", "gate", "bounds", "traces", "sources"]
 
 
 @dataclass
@@ -292,14 +292,23 @@ class LearnSpec:
     1 without a gate. Only the weights of active source items change: while j is active and the gate
     open, its row of weights relaxes toward ``rate / decay`` times the target's pattern (with ``decay``
     0 it only grows, up to the upper bound). Rates are per second.
+
+    ``traces: true``: c_j and c_m are the source's and target's memory traces at the item centres (both
+    fields need a ``memory``) -- what was active last, held while the field rests -- so that a gate
+    opening after the act (a success reported seconds later) still finds who was active together.
+    ``sources``: the source items whose weights learn (default all); the others keep their prior, and
+    only the learning weights are held to ``bounds``.
     """
 
     rate: float = 0.0
     decay: float = 0.0
     gate: str | None = None
     bounds: list[float] = field(default_factory=lambda: [0.0, 1.0])
+    traces: bool = False
+    sources: list[str] | None = None
 
-    def validate(self, where: str, fields_by_name: Mapping[str, "FieldSpec"]) -> None:
+    def validate(self, where: str, fields_by_name: Mapping[str, "FieldSpec"], source: "FieldSpec | None" = None,
+                 target: "FieldSpec | None" = None) -> None:
         self.rate = _number(where, "learn.rate", self.rate, nonneg=True)
         self.decay = _number(where, "learn.decay", self.decay, nonneg=True)
         if (not isinstance(self.bounds, (list, tuple)) or len(self.bounds) != 2):
@@ -311,6 +320,25 @@ class LearnSpec:
         self.bounds = [lo, hi]
         if self.gate is not None:
             gate_item(where, self.gate, fields_by_name)
+        if not isinstance(self.traces, bool):
+            raise FieldError(where, "learn.traces", f"must be true or false, got {self.traces!r}")
+        if self.traces:
+            for end in (source, target):
+                if end is not None and end.memory is None:
+                    raise FieldError(where, "learn.traces", f"reads memory traces, and field '{end.name}' has no 'memory'")
+        if self.sources is not None:
+            if isinstance(self.sources, str) or not isinstance(self.sources, (list, tuple)):
+                raise FieldError(where, "learn.sources", f"must be a list of source items, got {self.sources!r}")
+            self.sources = list(self.sources)
+            if source is not None:
+                for s in self.sources:
+                    if s not in source.items:
+                        raise FieldError(where, "learn.sources", f"unknown item {s!r} of source field '{source.name}'; "
+                                                                 f"known: {', '.join(source.items)}")
+
+    def learns(self, source_item: str) -> bool:
+        """Whether the weights from this source item change."""
+        return self.sources is None or source_item in self.sources
 
     @classmethod
     def from_dict(cls, where: str, d: Any) -> "LearnSpec":
@@ -377,10 +405,12 @@ class CouplingSpec(_Coupling):
         if self.learn is not None:
             if not isinstance(self.learn, LearnSpec):
                 raise FieldError(w, "learn", f"must be a mapping with {', '.join(LEARN_KEYS)}")
-            self.learn.validate(w, fields_by_name)
+            self.learn.validate(w, fields_by_name, src, tgt)
             lo, hi = self.learn.bounds
-            for t in tgt.items:            # every weight, those left out (0) too
+            for t in tgt.items:            # every learning weight, those left out (0) too
                 for s in src.items:
+                    if not self.learn.learns(s):
+                        continue
                     a = clean.get(t, {}).get(s, 0.0)
                     if not lo <= a <= hi:
                         raise FieldError(w, f"table.{t}.{s}", f"the weight {a:g}{'' if a else ' (left out)'} lies outside "

@@ -104,7 +104,7 @@ class NumpyStepper:
             S += c.memory.amplitude * m
             self._build_traces(f, m)
         if len(L.names):
-            self._learn(presence, w)
+            self._learn(presence, m[c.item_pos], w)
         rate = S + (c.lateral @ f) - inhib[c.field_of] + c.h - u
         if self.continuous.terms:
             rate += self.continuous.total(f)
@@ -119,15 +119,19 @@ class NumpyStepper:
             if active.any():
                 m[sl] += np.where(active, mem.build[sl] * (f[sl] - m[sl]), -mem.decay[sl] * m[sl])
 
-    def _learn(self, presence: np.ndarray, w: np.ndarray) -> None:
+    def _learn(self, presence: np.ndarray, traced: np.ndarray, w: np.ndarray) -> None:
+        """``presence`` f and ``traced`` the memory traces (as built this step) at the item centres."""
         L, dt = self.c.learning, self.c.spec.dt
         for i in range(len(L.names)):
             W = L.table(w, i)
             g = 1.0 if L.gate[i] < 0 else presence[L.gate[i]]
-            pre = presence[L.source[i]:L.source[i] + L.n_source[i]]
-            post = presence[L.target[i]:L.target[i] + L.n_target[i]]
-            W += dt * g * pre[None, :] * (L.rate[i] * post[:, None] - L.decay[i] * W)
-            np.clip(W, L.low[i], L.high[i], out=W)
+            c = traced if L.traces[i] else presence
+            pre = c[L.source[i]:L.source[i] + L.n_source[i]]
+            post = c[L.target[i]:L.target[i] + L.n_target[i]]
+            dW = dt * g * pre[None, :] * (L.rate[i] * post[:, None] - L.decay[i] * W)
+            learns = L.table(L.learns, i)
+            W += learns * dW
+            W[:] = np.where(learns > 0, np.clip(W, L.low[i], L.high[i]), W)
 
 
 def _kernels():
@@ -184,7 +188,8 @@ class NumbaStepper:
         mem, L = c.memory, c.learning
         self._learning = (
             mem.any, mem.fields, mem.amplitude, mem.build, mem.decay, mem.threshold,
-            c.spec.dt, L.source, L.n_source, L.target, L.n_target, L.gate, L.k, L.rate, L.decay, L.low, L.high, L.ptr,
+            c.spec.dt, L.source, L.n_source, L.target, L.n_target, L.gate, L.traces, L.learns, L.k, L.rate, L.decay, L.low,
+            L.high, L.ptr,
         )
 
     def run(self, n: int, u: np.ndarray, S: np.ndarray, S_ext: np.ndarray, stim_item: np.ndarray, xi: np.ndarray | None,
