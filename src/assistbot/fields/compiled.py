@@ -247,6 +247,7 @@ class LearningArrays:
     gate: np.ndarray    # (L,) item index of the gate, -1 for none
     traces: np.ndarray  # (L,) bool: the rule reads the memory traces, not the outputs
     learns: np.ndarray  # flat like the weights: 1.0 where the weight learns, 0.0 where it keeps its prior
+    post_threshold: np.ndarray  # (L,) weights onto a target item change only while its c_m exceeds this
     k: np.ndarray
     rate: np.ndarray
     decay: np.ndarray
@@ -297,6 +298,7 @@ def _learning_arrays(spec: NetworkSpec, item_off: dict[str, int]) -> LearningArr
         gate=ints(gates),
         traces=np.array([r.traces for r in rules], dtype=np.bool_),
         learns=np.concatenate(learns) if learns else np.zeros(0),
+        post_threshold=floats([r.post_threshold for r in rules]),
         k=floats([c.k for c in learned]),
         rate=floats([r.rate for r in rules]),
         decay=floats([r.decay for r in rules]),

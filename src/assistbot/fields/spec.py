@@ -278,7 +278,7 @@ class _Coupling:
         return fields_by_name[self.source], fields_by_name[self.target]
 
 
-LEARN_KEYS = ["rate", "decay", "gate", "bounds", "traces", "sources"]
+LEARN_KEYS = ["rate", "decay", "gate", "bounds", "traces", "sources", "post_threshold"]
 
 
 @dataclass
@@ -297,7 +297,9 @@ class LearnSpec:
     fields need a ``memory``) -- what was active last, held while the field rests -- so that a gate
     opening after the act (a success reported seconds later) still finds who was active together.
     ``sources``: the source items whose weights learn (default all); the others keep their prior, and
-    only the learning weights are held to ``bounds``.
+    only the learning weights are held to ``bounds``. ``post_threshold``: only the weights onto target
+    items whose c_m exceeds it change (default 0: with traces, a target that was never active keeps its
+    weights; a target that was active and lost to another relaxes toward what is left of its trace).
     """
 
     rate: float = 0.0
@@ -306,6 +308,7 @@ class LearnSpec:
     bounds: list[float] = field(default_factory=lambda: [0.0, 1.0])
     traces: bool = False
     sources: list[str] | None = None
+    post_threshold: float = 0.0
 
     def validate(self, where: str, fields_by_name: Mapping[str, "FieldSpec"], source: "FieldSpec | None" = None,
                  target: "FieldSpec | None" = None) -> None:
@@ -320,6 +323,7 @@ class LearnSpec:
         self.bounds = [lo, hi]
         if self.gate is not None:
             gate_item(where, self.gate, fields_by_name)
+        self.post_threshold = _number(where, "learn.post_threshold", self.post_threshold, nonneg=True)
         if not isinstance(self.traces, bool):
             raise FieldError(where, "learn.traces", f"must be true or false, got {self.traces!r}")
         if self.traces:

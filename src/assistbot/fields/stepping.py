@@ -129,7 +129,7 @@ class NumpyStepper:
             pre = c[L.source[i]:L.source[i] + L.n_source[i]]
             post = c[L.target[i]:L.target[i] + L.n_target[i]]
             dW = dt * g * pre[None, :] * (L.rate[i] * post[:, None] - L.decay[i] * W)
-            learns = L.table(L.learns, i)
+            learns = L.table(L.learns, i) * (post > L.post_threshold[i])[:, None]
             W += learns * dW
             W[:] = np.where(learns > 0, np.clip(W, L.low[i], L.high[i]), W)
 
@@ -188,8 +188,8 @@ class NumbaStepper:
         mem, L = c.memory, c.learning
         self._learning = (
             mem.any, mem.fields, mem.amplitude, mem.build, mem.decay, mem.threshold,
-            c.spec.dt, L.source, L.n_source, L.target, L.n_target, L.gate, L.traces, L.learns, L.k, L.rate, L.decay, L.low,
-            L.high, L.ptr,
+            c.spec.dt, L.source, L.n_source, L.target, L.n_target, L.gate, L.traces, L.learns, L.post_threshold, L.k,
+            L.rate, L.decay, L.low, L.high, L.ptr,
         )
 
     def run(self, n: int, u: np.ndarray, S: np.ndarray, S_ext: np.ndarray, stim_item: np.ndarray, xi: np.ndarray | None,
