@@ -101,7 +101,7 @@ def test_only_an_active_source_items_weights_change_and_only_while_the_gate_is_o
 
 def traced_hebbian_net(backend: str, sources: list[str] | None = None, post_threshold: float = 0.0) -> Network:
     memory = {"tau_build": 0.1, "tau_decay": 1.0, "amplitude": 0.0, "threshold": 0.5}
-    learn = {"rate": 2.0, "decay": 1.0, "gate": "G.ok", "bounds": [0.0, 2.0], "traces": True,
+    learn = {"rate": 2.0, "decay": 1.0, "gate": "G.ok", "bounds": [0.0, 2.0], "traces": "both",
              "post_threshold": post_threshold}
     if sources is not None:
         learn["sources"] = sources
@@ -158,6 +158,31 @@ def test_a_rule_on_traces_one_step_against_the_formula(backend):
     expected = w0 + 0.01 * g * m["pre"][None, :] * (2.0 * m["post"][:, None] - 1.0 * w0)
     expected[:, 1] = -1.0
     assert np.allclose(net.table("pre->post"), np.clip(expected, [[0.0, -1.0]], 2.0), atol=1e-13)
+
+
+@pytest.mark.parametrize("backend", BACKENDS)
+def test_a_rule_may_read_its_pre_synaptic_side_from_a_field_that_holds_the_source(backend):
+    """``pre``: a working memory holding x (its own peak, the source long silent) gives c_j; the post side is
+    the target's trace. The coupling still drives its target from its source only."""
+    memory = {"tau_build": 0.1, "tau_decay": 1.0, "amplitude": 0.0, "threshold": 0.5}
+    net = Network.from_dict({
+        "dt": 0.01,
+        "fields": {"pre": _field(["x", "y"], 4.0), "held": _field(["x"], 4.0), "post": _field(["p", "q"], 4.0, memory=memory),
+                   "G": _field(["ok"], 4.0)},
+        "couplings": [{"source": "pre", "target": "post", "k": 1.0, "table": {"p": {"x": 0.2}, "q": {"x": 0.2}},
+                       "learn": {"rate": 2.0, "decay": 1.0, "gate": "G.ok", "bounds": [0.0, 2.0], "traces": "post",
+                                 "pre": "held", "sources": ["x"]}}],
+    }, backend=backend)
+    net.set_stimulus("post", "p", 8.0)
+    net.run(1.0)
+    net.clear_stimuli()
+    net.set_stimulus("held", "x", 8.0)    # the memory holds x; the source field itself shows nothing
+    net.set_stimulus("G", "ok", 8.0)
+    net.run(2.0)
+    assert net.presence("pre").max() < 0.01
+    w = net.table("pre->post")
+    assert w[0, 0] > 1.7 and w[1, 0] == 0.2          # onto p (the trace) grown; q never active: kept
+    assert net.coupling_inputs("post")["pre->post"].max() < 0.01, "no drive: the source is silent"
 
 
 @pytest.mark.parametrize("backend", BACKENDS)
@@ -299,8 +324,10 @@ def test_learned_weights_round_trip_survive_reset_and_parameter_changes_and_forg
     ({"learn": {"rate": 1.0, "bounds": [0.0, 0.1]}}, "table.p.x", "outside learn.bounds"),
     ({"learn": {"rate": 1.0, "decay": 500.0}}, "learn.decay", "1/dt"),
     ({"learn": {"speed": 1.0}}, "learn.speed", "allowed"),
-    ({"learn": {"rate": 1.0, "traces": True}}, "learn.traces", "no 'memory'"),
-    ({"learn": {"rate": 1.0, "traces": "yes"}}, "learn.traces", "true or false"),
+    ({"learn": {"rate": 1.0, "traces": "post"}}, "learn.traces", "no 'memory'"),
+    ({"learn": {"rate": 1.0, "traces": True}}, "learn.traces", "one of none, pre, post, both"),
+    ({"learn": {"rate": 1.0, "pre": "H"}}, "learn.pre", "no field"),
+    ({"learn": {"rate": 1.0, "pre": "G"}}, "learn.pre", "lacks the learning source items x"),
     ({"learn": {"rate": 1.0, "sources": ["z"]}}, "learn.sources", "unknown item"),
     ({"learn": {"rate": 1.0, "sources": "x"}}, "learn.sources", "a list"),
     ({"learn": {"rate": 1.0, "post_threshold": -0.1}}, "learn.post_threshold", ">= 0"),
@@ -401,3 +428,17 @@ def test_a_grip_that_meant_pour_comes_to_mean_hand_over_after_three_taught_trial
     w = net.table("grip->goal")
     assert w[0, 1] > 3.0 and w[1, 1] < 1.0   # side -> hand-over up, side -> pour down
     assert w[0, 0] == pytest.approx(4.0, abs=1e-6)   # the grip not seen: its weights stay
+
+
+@pytest.mark.parametrize("backend", BACKENDS)
+def test_weights_of_items_that_do_not_learn_stay_at_their_prior_through_a_file(backend):
+    net = traced_hebbian_net(backend, sources=["x"])
+    tables = net.learned_tables()
+    assert tables == {"pre->post": {"p": {"x": 0.2}, "q": {"x": 0.2}, "r": {"x": 0.2}}}, "only the learning weights"
+    net.set_table("pre->post", {"p": {"x": 1.5}})     # x -> q, r left out: 0; y's weights left out: their prior
+    assert np.array_equal(net.table("pre->post"), [[1.5, -1.0], [0.0, -1.0], [0.0, -1.0]])
+    net.set_table("pre->post", {"p": {"x": 1.0, "y": -1.0}})   # y's prior given as it is: accepted
+    with pytest.raises(FieldError) as err:
+        net.set_table("pre->post", {"p": {"x": 1.0, "y": 0.5}})
+    assert err.value.key == "table.p.y" and "does not learn" in err.value.message
+    assert net.table("pre->post")[0, 0] == 1.0, "a refused table changes nothing"

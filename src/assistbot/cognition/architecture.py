@@ -12,6 +12,8 @@ Layers (fields of `assistbot.fields`, items from `assistbot.task`):
 - IL: the partner's intention (from ASL + CSGL + OML);
 - AFL: the memory of the robot's own actions that failed (the executor's reports), which keeps a
   failed action habituated in AEL while it stands;
+- SUCCESS: up for a moment when an action of the robot's finished as it should or a sub-goal was
+  reached; with ``learning.rate`` > 0 it gates the learning of the grip-to-chain weights (OL -> ASL);
 - AML: mismatch of the intention with what is possible (IL + ASL/OML), and of what the robot did
   with what came of it: a failure reported while AFL remembers one of the same action;
 - AEL: the complementary action (IL, OML, CSGL, AML, INI, URGE), one winner that
@@ -123,6 +125,8 @@ class Cognition:
         self._pulses: dict[str, float] = {}     # AML mismatch -> time of the last failure report pulsing it
         self._lying_since: dict[str, float] = {}  # object -> since when it has been seen lying
         self._cleared: dict[str, float] = {}    # motion action -> time its failure memory was cleared
+        self._succeeded_at = -math.inf          # when an action last finished as it should or a sub-goal was reached
+        self._reached: set[str] = set()         # the sub-goals CSGL_past holds (a new one is a success)
         self._pending: list[Said] = []
         self._new = False
         self._released: str | None = None
@@ -190,6 +194,7 @@ class Cognition:
         if r.status.ended and self.decision is not None and (r.action is None or r.action == self.decision):
             self.release(r.status)
         self._apply_failure_inputs()
+        self._apply_success_input()
 
     def release(self, why: Status = Status.SUCCEEDED) -> None:
         """End the current decision: a transient inhibition of AEL and a habituation of the released action."""
@@ -207,6 +212,7 @@ class Cognition:
             else:
                 self._failures.pop(self.decision, None)
                 self._cleared[self.decision] = self.net.t
+                self._succeeded_at = self.net.t
         self.history.append((self.net.t, f"release ({why.value})", self.decision))
         self._released = self.decision
         self.decision = None
@@ -235,6 +241,17 @@ class Cognition:
         for m in task.ACTION_FAILURES:
             on = m in self._pulses and t - self._pulses[m] < float(st["pulse_seconds"])
             self.net.set_stimulus("AML", m, float(st["failure_pulse"]) if on else 0.0)
+
+    def _apply_success_input(self) -> None:
+        """SUCCESS up for ``success_seconds`` after an action of the robot's finished as it should (the executor's
+        report) or CSGL_past newly holds a sub-goal: the gate of learning from the user."""
+        st = self.config.data["stimulus"]
+        reached = set(self.peaks("CSGL_past"))
+        if reached - self._reached:
+            self._succeeded_at = self.net.t
+        self._reached = reached
+        on = self.net.t - self._succeeded_at < float(st["success_seconds"])
+        self.net.set_stimulus("SUCCESS", "success", float(st["success_pulse"]) if on else 0.0)
 
     def _apply_release_inputs(self) -> None:
         rel = self.config.data["release"]
@@ -371,6 +388,22 @@ class Cognition:
             acts = self.net.activities("OL")
             return "bottle" if acts["hold_out_bottle"] >= acts["hold_out_glass"] else "glass"
         return target
+
+    # -- learning from the user ----------------------------------------------------------
+    @property
+    def learns(self) -> bool:
+        """Whether the grip-to-chain weights learn (``learning.rate`` > 0)."""
+        return float(self.config.data["learning"]["rate"]) > 0
+
+    def learned_weights(self) -> dict[str, dict[str, dict[str, float]]]:
+        """The learning couplings' weights now, {coupling: {target item: {source item: weight}}} ({} without
+        learning): what `assistbot.cognition.learning` writes to a weights file."""
+        return self.net.learned_tables()
+
+    def load_weights(self, tables: Mapping[str, Any]) -> None:
+        """Put weights read back from a file into the learning couplings (a `FieldError` names what is wrong)."""
+        for name, table in tables.items():
+            self.net.set_table(name, table)
 
     # -- recording ----------------------------------------------------------------------
     def record(self, layers: Iterable[str] | None = None, every: int = 4, couplings: Iterable[str] = ()):

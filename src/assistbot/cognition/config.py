@@ -40,6 +40,7 @@ LAYERS: dict[str, tuple[str, ...]] = {
     "ASL": task.ASL_ITEMS,
     "IL": task.IL_ITEMS,
     "AFL": task.MOTION_ACTIONS,
+    "SUCCESS": ("success",),
     "AML": task.AML_ITEMS,
     "AEL": task.AEL_ITEMS,
 }
@@ -86,6 +87,9 @@ def default_config() -> dict[str, Any]:
         # while the situation stands; cleared when the action succeeds, forgotten after a while
         "AFL": {**_field(2.5, -3.0, 4.0, 0.2, input_sigma=1.0), "spacing": 25},
         "AML": _field(0.05, -3.0, 0.8, 0.6),
+        # the robot's sense of success: up for a moment when an action of its own finished as it should or a
+        # sub-goal was reached; the gate of learning from the user (`learning`)
+        "SUCCESS": _field(0.05, -3.0, 0.0, 0.0),
         # action execution: competition, and the winner sustains itself until released
         "AEL": _field(0.12, -4.5, 4.0, 1.0),
     }
@@ -145,6 +149,8 @@ def default_config() -> dict[str, Any]:
             "failure_report": 5.0, "report_seconds": 3.0,
             "failure_pulse": 2.0, "pulse_seconds": 1.5,
             "success_clears": -20.0,  # into AFL at an action that finished (for report_seconds): its failure is past
+            # into SUCCESS when a motion action finished as it should or a sub-goal was newly reached
+            "success_pulse": 5.0, "success_seconds": 1.5,
             "forget_after": 90.0,     # s after its last failure an action's memory is let go
             # an object seen lying on its side, into AML at its fall once seen so for fallen_after s (a
             # misread frame, or a tipping object that rights itself, is not a fall)
@@ -157,6 +163,19 @@ def default_config() -> dict[str, Any]:
             "threshold": 0.5,     # centre activity above which a pool counts as a peak
             "off": 0.0,           # ... and below which it counts as gone (hysteresis for "once per rise")
             "hold": 0.1,          # s a peak must stay up before it is a decision / is spoken
+        },
+        # learning from the user: which chain of the partner a grip on an object means (the OL -> ASL weights
+        # of the grip items), learnt while SUCCESS is up, from the grip in hand (GRIP) and the chain ASL read
+        # last (its memory trace); see `assistbot.cognition.learning`. rate 0: no learning, no GRIP, no trace
+        "learning": {
+            "rate": 0.0,            # per s; `--learn` sets it to learning.LEARNING_RATE
+            "decay": 1.0,           # per s: a grip's weight onto the chain read relaxes toward rate/decay ...
+            "highest": 1.0,         # ... within [0, highest], the priors' own range
+            "post_threshold": 0.05,  # a chain whose trace is below this took no part and keeps its weight
+            "trace_build": 0.2,     # s: ASL's trace builds within a reading held this long ...
+            "reading_memory": 2.0,  # s: ... and fades soon once another reading has replaced it
+            "grip_hold": 6.0,       # OL -> GRIP: a grip seen sets the grip in hand ...
+            "grip_end": -8.0,       # ... and ends any other, as a reach, a pointing or a request does
         },
         "release": {
             "inhibition": -10.0,  # input to all of AEL while a finished/failed decision is released
@@ -260,7 +279,31 @@ class CognitionConfig:
              "table": copy.deepcopy(c["table"])}
             for name, c in d["couplings"].items()
         ]
+        if float(d["learning"]["rate"]) > 0:
+            self._add_learning(fields, couplings)
         return {"dt": d["dt"], "fields": fields, "couplings": couplings}
+
+    def _add_learning(self, fields: dict[str, Any], couplings: list[dict[str, Any]]) -> None:
+        """What learning from the user adds; none of it drives a field the architecture decides with, so the
+        decisions are the priors' until a weight has moved."""
+        d = self.data
+        learn = d["learning"]
+        # GRIP: the grip in hand, a memory of the last grip seen, held through what is done with it (a hold-out,
+        # a pour, a rest while the robot takes it) and ended by a new grip or a new act (reach, pointing, request)
+        # (a memory field as OML is: its own wide spacing and a little global inhibition keep a peak from spreading)
+        fields["GRIP"] = {"items": list(task.OL_GRIP_ITEMS), **_field(0.1, -3.0, 4.0, 0.2, input_sigma=1.0), "spacing": 25}
+        hold, end = float(learn["grip_hold"]), float(learn["grip_end"])
+        new_acts = [i for i in task.OL_ITEMS if i.startswith(("reach_", "point_")) or i == "open_hand_request"]
+        couplings.append({"name": "OL->GRIP", "source": "OL", "target": "GRIP", "k": 1.0,
+                          "table": {g: {**{o: end for o in task.OL_GRIP_ITEMS if o != g}, **{a: end for a in new_acts}, g: hold}
+                                    for g in task.OL_GRIP_ITEMS}})
+        # ASL's trace, for the learning rule only: amplitude 0 keeps it out of the field's dynamics
+        fields["ASL"]["memory"] = {"tau_build": float(learn["trace_build"]), "tau_decay": float(learn["reading_memory"]),
+                                   "amplitude": 0.0, "threshold": 0.5}
+        ol_asl = next(c for c in couplings if c["name"] == "OL->ASL")
+        ol_asl["learn"] = {"rate": float(learn["rate"]), "decay": float(learn["decay"]), "gate": "SUCCESS.success",
+                           "bounds": [0.0, float(learn["highest"])], "traces": "post", "pre": "GRIP",
+                           "sources": list(task.OL_GRIP_ITEMS), "post_threshold": float(learn["post_threshold"])}
 
     def copy(self) -> "CognitionConfig":
         return CognitionConfig(self.data)

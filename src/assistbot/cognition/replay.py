@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from pathlib import Path
 from typing import Any, Mapping
 
 from assistbot.cognition.architecture import Cognition
@@ -67,13 +68,22 @@ class Replay:
 
 
 def replay(timeline: Timeline, overrides: Mapping[str, Any] | None = None, record: bool = True, every: int = 4,
-           backend: str = "auto", seed: int | None = 0, agent: str = "dnf") -> Replay:
+           backend: str = "auto", seed: int | None = 0, agent: str = "dnf", learn: Path | None = None) -> Replay:
     """Play ``timeline`` (ground-truth percepts) into a fresh agent: the field architecture (``dnf``, recorded
-    for the figures when ``record``), or any other `assistbot.agents` name or ``module:factory``."""
+    for the figures when ``record``), or any other `assistbot.agents` name or ``module:factory``. ``learn``: a
+    weights file the field architecture starts from (if it exists), learns on, and writes back
+    (`assistbot.cognition.learning`)."""
+    from assistbot.cognition import learning
+
     rec = None
     a: Agent
+    if learn is not None:
+        learning.check_learner(agent)
     if agent == "dnf":
-        cog = Cognition(overrides={**timeline.config, **(overrides or {})}, backend=backend, seed=seed)
+        params = {**timeline.config, **(overrides or {})}
+        cog = Cognition(overrides=learning.learning_overrides(params, prefix="") if learn is not None else params,
+                        backend=backend, seed=seed)
+        episodes = learning.load_into(cog, learn) if learn is not None else 0
         rec = cog.record(every=every) if record else None
         a = cog
     else:
@@ -83,4 +93,6 @@ def replay(timeline: Timeline, overrides: Mapping[str, Any] | None = None, recor
     out = Replay(timeline, a, recorder=rec)
     for p in timeline.percepts():
         out.decisions.append(a.update(p))
+    if learn is not None:
+        learning.write_weights(learn, cog.learned_weights(), episodes + 1)
     return out

@@ -27,6 +27,9 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument("--record-truth", action="store_true",
                    help="also log the ground truth beside what vision reported (the inspector shows vision's mistakes; "
                         "the robot never sees it)")
+    p.add_argument("--learn", type=Path, default=None, metavar="WEIGHTS.json",
+                   help="learn from this person: the field architecture starts from the grip-to-chain weights in the "
+                        "file (the priors if it does not exist), learns while it runs, and writes them back")
     p.add_argument("--force", action="store_true",
                    help="replace an earlier run in the output folder (without it, such a folder is refused)")
 
@@ -89,12 +92,19 @@ def run(args: argparse.Namespace) -> int:
     if earlier and not args.force:
         state = "an unfinished run (PARTIAL)" if earlier == PARTIAL else "an earlier run (summary.json)"
         raise UserError(str(out), "--out", f"holds {state}; pass --force to replace it, or name another folder with --out")
+    if args.learn is not None:
+        from assistbot.cognition.learning import check_learner, read_weights
+
+        check_learner(scenario.agent)
+        read_weights(args.learn)   # a bad file stops the run before the episode, not after it
     result = run_scenario(scenario, out=out, perception=args.perception, seed=args.seed, overrides=overrides,
-                          video=not args.no_video, progress=True, record_truth=args.record_truth)
+                          video=not args.no_video, progress=True, record_truth=args.record_truth, learn=args.learn)
     verdict = f"drank at t = {result.time_to_drink:.1f} s" if result.success else f"did not drink ({result.end_reason})"
     print(f"{scenario.name}: {verdict}; decisions: {', '.join(a for _, a in result.decisions) or '(none)'}")
     if not args.no_video:
         print(f"video: {out / 'video.mp4'}")
     print(f"inspector: {out / 'inspect.html'}")
+    if args.learn is not None:
+        print(f"learnt weights: {args.learn}")
     print(f"outputs: {out}/")
     return 0 if result.success else 1

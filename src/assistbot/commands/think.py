@@ -20,6 +20,9 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument("--agent", default="dnf", metavar="AGENT",
                    help="dnf (the field architecture, default), fsm (the state-machine baseline: no figures) or package.module:factory")
     p.add_argument("--no-figures", action="store_true", help="write only the log")
+    p.add_argument("--learn", type=Path, default=None, metavar="WEIGHTS.json",
+                   help="learn the grip-to-chain weights from this timeline: start from the file (the priors if it does "
+                        "not exist), write what was learnt back to it")
 
 
 def _overrides(items: list[str]) -> dict[str, float]:
@@ -45,7 +48,7 @@ def run(args: argparse.Namespace) -> int:
     tl = load_timeline(args.timeline)
     overrides = _overrides(args.overrides)
     figures = not args.no_figures and args.agent == "dnf"   # the figures show the fields
-    rep = replay(tl, overrides=overrides, record=figures, backend=args.backend, agent=args.agent)
+    rep = replay(tl, overrides=overrides, record=figures, backend=args.backend, agent=args.agent, learn=args.learn)
     out = args.out or Path("render/think") / tl.name
     out.mkdir(parents=True, exist_ok=True)
     lines = rep.log_lines()
@@ -58,4 +61,6 @@ def run(args: argparse.Namespace) -> int:
     for line in lines:
         if "DECIDE" in line or "RELEASE" in line:
             print("  " + line.strip())
+    if args.learn is not None:
+        print(f"learnt weights: {args.learn}")
     return 0

@@ -15,9 +15,12 @@ from assistbot.scenario import Scenario, load_scenario
 
 def run_scenario(spec: str | Path | Scenario, out: str | Path | None = None, perception: str = "vision",
                  seed: int | None = None, overrides: dict[str, Any] | None = None, video: bool = True,
-                 progress: bool = False, record_truth: bool = False):
+                 progress: bool = False, record_truth: bool = False, learn: Path | None = None):
     """Run one episode; with ``out``, write log.jsonl, summary.json, subtitles.srt, figures and video.mp4 there
-    (replacing an earlier run's; `assistbot.episode.outputs` says in which order, and how a killed run shows)."""
+    (replacing an earlier run's; `assistbot.episode.outputs` says in which order, and how a killed run shows).
+    ``learn``: a weights file the field architecture starts from (if it exists) and writes what it learnt back
+    to (`assistbot.cognition.learning`; learning is switched on for this episode)."""
+    from assistbot.cognition import learning
     from assistbot.cognition.architecture import SPOKEN_LAYERS
     from assistbot.episode.builder import build_episode
     from assistbot.episode.outputs import (
@@ -37,8 +40,12 @@ def run_scenario(spec: str | Path | Scenario, out: str | Path | None = None, per
     from assistbot.interfaces import FieldAgent
 
     scenario = spec if isinstance(spec, Scenario) else load_scenario(spec)
+    if learn is not None:
+        learning.check_learner(scenario.agent)
+        overrides = learning.learning_overrides(overrides or {})
     ep = build_episode(scenario, perception=perception, seed=seed, overrides=overrides,
                        frame_every=FRAME_EVERY if (video and out is not None) else None, record_truth=record_truth)
+    episodes = learning.load_into(ep.agent, learn) if learn is not None else 0
     out_dir = Path(out) if out is not None else None
     rec_video = None
     if out_dir is not None:
@@ -70,6 +77,8 @@ def run_scenario(spec: str | Path | Scenario, out: str | Path | None = None, per
         if rec_video is not None:
             rec_video.close()
         ep.perception.close()
+    if learn is not None:
+        learning.write_weights(learn, ep.agent.learned_weights(), episodes + 1)   # type: ignore[attr-defined]
     if out_dir is not None:
         write_log(ep, out_dir / "log.jsonl")
         write_srt_for(ep, out_dir / "subtitles.srt")
@@ -78,7 +87,10 @@ def run_scenario(spec: str | Path | Scenario, out: str | Path | None = None, per
             audio = add_audio(ep, out_dir / "video.mp4", rec_video.writer.frames / rec_video.writer.fps)
         figures = [str(p) for p in write_figures(ep, recorder, out_dir)]
         write_fields(ep, recorder, out_dir / FIELDS)
-        write_summary(result, out_dir / "summary.json", {"figures": figures, "video_has_audio": audio})
+        extra: dict[str, Any] = {"figures": figures, "video_has_audio": audio}
+        if learn is not None:
+            extra["learned_weights"] = {"file": str(learn), "episodes": episodes + 1}
+        write_summary(result, out_dir / "summary.json", extra)
         write_inspector(out_dir)
         finish(out_dir)
     return result

@@ -248,23 +248,26 @@ def build_traces(f, m, offsets, mem_fields, mem_build, mem_decay, mem_thr):
 
 
 @inlined
-def learn(f, m, item_pos, w, dt, l_src, l_ns, l_tgt, l_nt, l_gate, l_traces, l_learns, l_post_thr, l_rate, l_decay,
-          l_lo, l_hi, l_ptr):
+def learn(f, m, item_pos, w, dt, l_src, l_ns, l_tgt, l_nt, l_gate, l_tpre, l_tpost, l_pre_item, l_pre_ptr, l_learns,
+          l_post_thr, l_rate, l_decay, l_lo, l_hi, l_ptr):
     """w += dt g c_pre (rate c_post - decay w) where the weight learns and c_post exceeds the post threshold,
-    clipped to the bounds (see compiled); c the outputs f, or the memory traces m for a rule that reads traces."""
+    clipped to the bounds (see compiled); each c the output f, or the memory trace m on a traced side, c_pre
+    read at each source's pre item."""
     for L in range(l_src.size):
-        s0, ns, t0, p0 = l_src[L], l_ns[L], l_tgt[L], l_ptr[L]
+        ns, t0, p0, q0 = l_ns[L], l_tgt[L], l_ptr[L], l_pre_ptr[L]
         g = 1.0 if l_gate[L] < 0 else f[item_pos[l_gate[L]]]
-        c = m if l_traces[L] else f
+        cpre = m if l_tpre[L] else f
+        cpost = m if l_tpost[L] else f
         for mi in range(l_nt[L]):
-            post = c[item_pos[t0 + mi]]
+            post = cpost[item_pos[t0 + mi]]
             if post <= l_post_thr[L]:
                 continue
             for j in range(ns):
                 q = p0 + mi * ns + j
-                if l_learns[q] == 0.0:
+                at = l_pre_item[q0 + j]
+                if l_learns[q] == 0.0 or at < 0:
                     continue
-                v = w[q] + dt * g * c[item_pos[s0 + j]] * (l_rate[L] * post - l_decay[L] * w[q])
+                v = w[q] + dt * g * cpre[item_pos[at]] * (l_rate[L] * post - l_decay[L] * w[q])
                 w[q] = l_lo[L] if v < l_lo[L] else (l_hi[L] if v > l_hi[L] else v)
 
 
@@ -277,7 +280,8 @@ def run(n_steps, u, S, S_ext, stim_item, xi, use_noise,
         R_indptr, R_indices, R_data,
         f, buf, proj, pad, tmp, rate, d, tbuf,
         m, w, use_mem, mem_fields, mem_amp, mem_build, mem_decay, mem_thr,
-        dt, l_src, l_ns, l_tgt, l_nt, l_gate, l_traces, l_learns, l_post_thr, l_k, l_rate, l_decay, l_lo, l_hi, l_ptr):
+        dt, l_src, l_ns, l_tgt, l_nt, l_gate, l_tpre, l_tpost, l_pre_item, l_pre_ptr, l_learns, l_post_thr, l_k, l_rate,
+        l_decay, l_lo, l_hi, l_ptr):
     P = u.size
     for step in range(n_steps):
         sigmoid(u, beta, u0, f, tbuf)
@@ -328,8 +332,8 @@ def run(n_steps, u, S, S_ext, stim_item, xi, use_noise,
             if dm != 0.0:
                 for q in range(R_indptr[m_], R_indptr[m_ + 1]):
                     S[R_indices[q]] += dm * R_data[q]
-        learn(f, m, item_pos, w, dt, l_src, l_ns, l_tgt, l_nt, l_gate, l_traces, l_learns, l_post_thr, l_rate, l_decay,
-              l_lo, l_hi, l_ptr)
+        learn(f, m, item_pos, w, dt, l_src, l_ns, l_tgt, l_nt, l_gate, l_tpre, l_tpost, l_pre_item, l_pre_ptr, l_learns,
+              l_post_thr, l_rate, l_decay, l_lo, l_hi, l_ptr)
         if use_noise:
             for p in range(P):
                 u[p] += dt_tau[p] * (rate[p] + S[p]) + noise_scale[p] * xi[step, p]

@@ -245,7 +245,10 @@ class LearningArrays:
     target: np.ndarray  # (L,) first item of the target field
     n_target: np.ndarray
     gate: np.ndarray    # (L,) item index of the gate, -1 for none
-    traces: np.ndarray  # (L,) bool: the rule reads the memory traces, not the outputs
+    trace_pre: np.ndarray   # (L,) bool: c_j from the memory trace, not the output
+    trace_post: np.ndarray  # (L,) bool: c_m from the memory trace, not the output
+    pre_item: np.ndarray    # flat, n_source per coupling (from pre_ptr): the item whose c gives each source's c_j
+    pre_ptr: np.ndarray     # (L+1,) start of each coupling's pre_item
     learns: np.ndarray  # flat like the weights: 1.0 where the weight learns, 0.0 where it keeps its prior
     post_threshold: np.ndarray  # (L,) weights onto a target item change only while its c_m exceeds this
     k: np.ndarray
@@ -278,6 +281,14 @@ def _learning_arrays(spec: NetworkSpec, item_off: dict[str, int]) -> LearningArr
     learned = [c for c in spec.couplings if c.learn is not None]
     rules = [c.learn for c in learned if c.learn is not None]
     priors = [c.matrix(spec.fields).ravel() for c in learned]
+    pre_items = []   # per coupling, per source item: where c_j is read (the source itself, or the `pre` field's item)
+    for c, rule in zip(learned, rules):
+        src = spec.fields[c.source].items
+        if rule.pre is None:
+            pre_items.append([item_off[c.source] + j for j in range(len(src))])
+        else:
+            held = spec.fields[rule.pre].items
+            pre_items.append([item_off[rule.pre] + held.index(s) if s in held else -1 for s in src])
     learns = [np.tile([float(rule.learns(s)) for s in spec.fields[c.source].items], len(spec.fields[c.target].items))
               for c, rule in zip(learned, rules)]
     gates = []
@@ -296,7 +307,10 @@ def _learning_arrays(spec: NetworkSpec, item_off: dict[str, int]) -> LearningArr
         target=ints([item_off[c.target] for c in learned]),
         n_target=ints([len(spec.fields[c.target].items) for c in learned]),
         gate=ints(gates),
-        traces=np.array([r.traces for r in rules], dtype=np.bool_),
+        trace_pre=np.array([r.traces in ("pre", "both") for r in rules], dtype=np.bool_),
+        trace_post=np.array([r.traces in ("post", "both") for r in rules], dtype=np.bool_),
+        pre_item=ints([p for parts in pre_items for p in parts]),
+        pre_ptr=ints(np.concatenate([[0], np.cumsum([len(parts) for parts in pre_items])])),
         learns=np.concatenate(learns) if learns else np.zeros(0),
         post_threshold=floats([r.post_threshold for r in rules]),
         k=floats([c.k for c in learned]),

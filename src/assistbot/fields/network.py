@@ -290,23 +290,40 @@ class Network:
 
     def set_table(self, coupling: str, table: Mapping[str, Mapping[str, float]] | np.ndarray) -> None:
         """Put weights into a learning coupling (e.g. read back from a file): a matrix (target x source items)
-        or {target item: {source item: weight}} (items left out are 0); they must lie within its bounds.
+        or {target item: {source item: weight}} (learning weights left out are 0, the others their prior, which
+        they must keep); the learning weights must lie within its bounds.
         Checked as a table in the spec is (`CouplingSpec.validate`), without changing the spec's prior."""
         i = self._learning_index(coupling)
         # validate turns a matrix into the mapping, as it does for a spec's table
-        weights = dataclasses.replace(self.spec.coupling(coupling), table=cast(Any, table))
+        spec = self.spec.coupling(coupling)
+        weights = dataclasses.replace(spec, table=cast(Any, table))
         weights.validate(self.spec.fields)
-        self._c.learning.table(self.state_w, i)[:] = weights.matrix(self.spec.fields)
+        new, prior = weights.matrix(self.spec.fields), spec.matrix(self.spec.fields)
+        learn = spec.learn
+        assert learn is not None
+        src, tgt = self.spec.fields[spec.source].items, self.spec.fields[spec.target].items
+        for j, s in enumerate(src):
+            if learn.learns(s):
+                continue
+            for m, t in enumerate(tgt):   # a weight that does not learn stays at its prior (left out: the prior)
+                given = weights.table.get(t, {}).get(s)
+                if given is not None and given != prior[m, j]:
+                    raise FieldError(spec.where, f"table.{t}.{s}", f"does not learn ({s!r} is not in learn.sources); "
+                                                                   f"it stays at its prior {prior[m, j]:g}, got {given:g}")
+                new[m, j] = prior[m, j]
+        self._c.learning.table(self.state_w, i)[:] = new
 
     def learned_tables(self) -> dict[str, dict[str, dict[str, float]]]:
-        """Every learning coupling's weights now, {coupling: {target item: {source item: weight}}}: plain data
-        for a JSON file, read back with `set_table`."""
+        """Every learning coupling's learning weights now (those of its ``learn.sources``),
+        {coupling: {target item: {source item: weight}}}: plain data for a JSON file, read back with `set_table`."""
         out = {}
         for name in self._c.learning.names:
             c = self.spec.coupling(name)
+            assert c.learn is not None
             a = self.table(name)
             src, tgt = self.spec.fields[c.source].items, self.spec.fields[c.target].items
-            out[name] = {t: {s_item: float(a[i, j]) for j, s_item in enumerate(src)} for i, t in enumerate(tgt)}
+            out[name] = {t: {s_item: float(a[i, j]) for j, s_item in enumerate(src) if c.learn.learns(s_item)}
+                         for i, t in enumerate(tgt)}
         return out
 
     def _outputs(self) -> np.ndarray:

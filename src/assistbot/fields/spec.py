@@ -278,7 +278,8 @@ class _Coupling:
         return fields_by_name[self.source], fields_by_name[self.target]
 
 
-LEARN_KEYS = ["rate", "decay", "gate", "bounds", "traces", "sources", "post_threshold"]
+LEARN_KEYS = ["rate", "decay", "gate", "bounds", "traces", "pre", "sources", "post_threshold"]
+TRACE_SIDES = ("none", "pre", "post", "both")
 
 
 @dataclass
@@ -293,20 +294,26 @@ class LearnSpec:
     open, its row of weights relaxes toward ``rate / decay`` times the target's pattern (with ``decay``
     0 it only grows, up to the upper bound). Rates are per second.
 
-    ``traces: true``: c_j and c_m are the source's and target's memory traces at the item centres (both
-    fields need a ``memory``) -- what was active last, held while the field rests -- so that a gate
-    opening after the act (a success reported seconds later) still finds who was active together.
-    ``sources``: the source items whose weights learn (default all); the others keep their prior, and
-    only the learning weights are held to ``bounds``. ``post_threshold``: only the weights onto target
-    items whose c_m exceeds it change (default 0: with traces, a target that was never active keeps its
-    weights; a target that was active and lost to another relaxes toward what is left of its trace).
+    For a gate that opens after the act (a success reported seconds later), when the fields have moved on:
+
+    - ``traces``: ``post`` reads c_m from the target's memory trace (what it held last, kept while it rests),
+      ``pre`` c_j from the pre-synaptic field's, ``both`` both (those fields need a ``memory``);
+    - ``pre``: another field whose items named like the learning sources give c_j, e.g. a working memory
+      that holds the source's last act through what follows it (the coupling still drives its target from
+      its source);
+    - ``sources``: the source items whose weights learn (default all); the others keep their prior, and
+      only the learning weights are held to ``bounds``;
+    - ``post_threshold``: only the weights onto target items whose c_m exceeds it change (default 0: with
+      traces, a target never active keeps its weights; one that was active and lost to another relaxes
+      toward what is left of its trace).
     """
 
     rate: float = 0.0
     decay: float = 0.0
     gate: str | None = None
     bounds: list[float] = field(default_factory=lambda: [0.0, 1.0])
-    traces: bool = False
+    traces: str = "none"
+    pre: str | None = None
     sources: list[str] | None = None
     post_threshold: float = 0.0
 
@@ -324,12 +331,6 @@ class LearnSpec:
         if self.gate is not None:
             gate_item(where, self.gate, fields_by_name)
         self.post_threshold = _number(where, "learn.post_threshold", self.post_threshold, nonneg=True)
-        if not isinstance(self.traces, bool):
-            raise FieldError(where, "learn.traces", f"must be true or false, got {self.traces!r}")
-        if self.traces:
-            for end in (source, target):
-                if end is not None and end.memory is None:
-                    raise FieldError(where, "learn.traces", f"reads memory traces, and field '{end.name}' has no 'memory'")
         if self.sources is not None:
             if isinstance(self.sources, str) or not isinstance(self.sources, (list, tuple)):
                 raise FieldError(where, "learn.sources", f"must be a list of source items, got {self.sources!r}")
@@ -339,6 +340,22 @@ class LearnSpec:
                     if s not in source.items:
                         raise FieldError(where, "learn.sources", f"unknown item {s!r} of source field '{source.name}'; "
                                                                  f"known: {', '.join(source.items)}")
+        pre = source
+        if self.pre is not None:
+            if not isinstance(self.pre, str) or self.pre not in fields_by_name:
+                raise FieldError(where, "learn.pre", f"no field named {self.pre!r}; known: {', '.join(fields_by_name)}")
+            pre = fields_by_name[self.pre]
+            if source is not None:
+                missing = [s for s in source.items if self.learns(s) and s not in pre.items]
+                if missing:
+                    raise FieldError(where, "learn.pre", f"field '{pre.name}' lacks the learning source items "
+                                                         f"{', '.join(missing)}")
+        if self.traces not in TRACE_SIDES:
+            raise FieldError(where, "learn.traces", f"must be one of {', '.join(TRACE_SIDES)}, got {self.traces!r}")
+        for side, end in (("pre", pre), ("post", target)):
+            if self.traces in (side, "both") and end is not None and end.memory is None:
+                raise FieldError(where, "learn.traces", f"reads the {side}-synaptic memory trace, and field '{end.name}' "
+                                                        f"has no 'memory'")
 
     def learns(self, source_item: str) -> bool:
         """Whether the weights from this source item change."""

@@ -125,9 +125,9 @@ class NumpyStepper:
         for i in range(len(L.names)):
             W = L.table(w, i)
             g = 1.0 if L.gate[i] < 0 else presence[L.gate[i]]
-            c = traced if L.traces[i] else presence
-            pre = c[L.source[i]:L.source[i] + L.n_source[i]]
-            post = c[L.target[i]:L.target[i] + L.n_target[i]]
+            at = L.pre_item[L.pre_ptr[i]:L.pre_ptr[i + 1]]
+            pre = np.where(at >= 0, (traced if L.trace_pre[i] else presence)[np.maximum(at, 0)], 0.0)
+            post = (traced if L.trace_post[i] else presence)[L.target[i]:L.target[i] + L.n_target[i]]
             dW = dt * g * pre[None, :] * (L.rate[i] * post[:, None] - L.decay[i] * W)
             learns = L.table(L.learns, i) * (post > L.post_threshold[i])[:, None]
             W += learns * dW
@@ -188,8 +188,8 @@ class NumbaStepper:
         mem, L = c.memory, c.learning
         self._learning = (
             mem.any, mem.fields, mem.amplitude, mem.build, mem.decay, mem.threshold,
-            c.spec.dt, L.source, L.n_source, L.target, L.n_target, L.gate, L.traces, L.learns, L.post_threshold, L.k,
-            L.rate, L.decay, L.low, L.high, L.ptr,
+            c.spec.dt, L.source, L.n_source, L.target, L.n_target, L.gate, L.trace_pre, L.trace_post, L.pre_item,
+            L.pre_ptr, L.learns, L.post_threshold, L.k, L.rate, L.decay, L.low, L.high, L.ptr,
         )
 
     def run(self, n: int, u: np.ndarray, S: np.ndarray, S_ext: np.ndarray, stim_item: np.ndarray, xi: np.ndarray | None,

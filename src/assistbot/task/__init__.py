@@ -27,6 +27,7 @@ from assistbot.task.drinking import (
     MOTION_ACTIONS,
     OBJECT_STATES,
     OBJECTS,
+    OL_GRIP_ITEMS,
     OL_ITEMS,
     OML_ITEMS,
     PARTNER_RESPONSES,

@@ -111,6 +111,11 @@ def grip_prior(grip: str, obj: str, goal: str) -> float:
     return GRIP_PRIORS.get((grip, obj), {}).get(goal, 0.0)
 
 
+#: the OL items that are a grip on an object: what the grip-to-goal priors map, and what learning from the
+#: user re-maps (`assistbot.cognition.learning`)
+OL_GRIP_ITEMS: tuple[str, ...] = tuple(f"{grip}_{obj}" for grip, obj in GRIP_PRIORS)
+
+
 # ---------------------------------------------------------------------------------------------
 # Action simulation layer (ASL): the human's goal-directed action chains
 # ---------------------------------------------------------------------------------------------

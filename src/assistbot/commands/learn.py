@@ -1,0 +1,121 @@
+"""`assistbot learn SCENARIO --episodes N --out DIR`: episodes in a row with the same person, the robot learning
+from each (`assistbot.cognition.learning`), and the learning curve."""
+
+from __future__ import annotations
+
+import argparse
+from pathlib import Path
+
+NAME = "learn"
+HELP = "run a scenario N times in a row with the same person, learning the grip-to-chain weights from each: " \
+       "learning.csv, learning.png and weights.json"
+ORDER = 12
+
+COLUMNS = ["episode", "seed", "success", "time_to_drink", "end_reason", "n_decisions", "n_failed_actions",
+           "errors_communicated", "distance_from_priors"]
+
+
+def add_arguments(p: argparse.ArgumentParser) -> None:
+    p.add_argument("scenario", help="a scenario file or the name of a shipped one (see 'assistbot list')")
+    p.add_argument("--episodes", type=int, default=5, help="how many episodes in a row (default 5)")
+    p.add_argument("--out", type=Path, default=None, help="output folder (default: render/learn/<scenario name>)")
+    p.add_argument("--seed", type=int, default=None,
+                   help="the first episode's seed (default: the scenario's); episode i runs with seed + i")
+    p.add_argument("--perception", choices=["vision", "oracle"], default="vision",
+                   help="vision (the robot's cameras) or oracle (ground truth, for debugging)")
+    p.add_argument("--set", dest="sets", action="append", default=[], metavar="PATH=VALUE",
+                   help="override a parameter by dotted path, as 'assistbot run' does, e.g. --set human.partner=1042 "
+                        "(repeatable)")
+    p.add_argument("--force", action="store_true", help="start over in a folder that holds an earlier learning run")
+
+
+def run(args: argparse.Namespace) -> int:
+    import csv
+
+    from assistbot.cognition import learning
+    from assistbot.commands.run import parse_sets
+    from assistbot.episode import run_scenario
+    from assistbot.episode.builder import split_overrides
+    from assistbot.errors import UserError
+    from assistbot.scenario import load_scenario, parse_scenario
+    from assistbot.sweep.jobs import scenario_data_with
+    from assistbot.sweep.spec import is_scenario_path
+
+    if args.episodes < 1:
+        raise UserError("--episodes", str(args.episodes), "must be 1 or more")
+    scenario = load_scenario(args.scenario)
+    overrides = parse_sets(args.sets)
+    edits = {k: v for k, v in overrides.items() if is_scenario_path(k)}
+    if edits:
+        scenario = parse_scenario(scenario_data_with(scenario, edits, "--set"), scenario.path)
+        overrides = {k: v for k, v in overrides.items() if k not in edits}
+    learning.check_learner(scenario.agent)
+    split_overrides(overrides, "--set", scenario.agent)
+    out = args.out or Path("render/learn") / scenario.name
+    weights, table = out / "weights.json", out / "learning.csv"
+    if out.exists() and not out.is_dir():
+        raise UserError(str(out), "--out", "is a file; name a folder")
+    if (weights.exists() or table.exists()) and not args.force:
+        raise UserError(str(out), "--out", "holds an earlier learning run; pass --force to start over, or name another "
+                                           "folder with --out")
+    out.mkdir(parents=True, exist_ok=True)
+    weights.unlink(missing_ok=True)
+    priors = None
+    first = scenario.seed if args.seed is None else args.seed
+    rows = []
+    for i in range(args.episodes):
+        result = run_scenario(scenario, out=None, perception=args.perception, seed=first + i, overrides=overrides,
+                              video=False, learn=weights)
+        tables, _ = learning.read_weights(weights)
+        if priors is None:
+            from assistbot.cognition import Cognition
+
+            priors = Cognition(overrides={"learning.rate": learning.LEARNING_RATE}).learned_weights()
+        s = result.summary()
+        rows.append({
+            "episode": i + 1, "seed": first + i, "success": result.success,
+            "time_to_drink": "" if result.time_to_drink is None else round(result.time_to_drink, 2),
+            "end_reason": result.end_reason, "n_decisions": len(result.decisions),
+            "n_failed_actions": sum(1 for a in s["actions"] if a["status"] == "failed"),
+            "errors_communicated": result.errors_communicated,
+            "distance_from_priors": round(learning.distance_from_priors(tables, priors), 4),
+        })
+        r = rows[-1]
+        print(f"episode {r['episode']} (seed {r['seed']}): " +
+              (f"drank at {r['time_to_drink']} s" if r["success"] else f"did not drink ({r['end_reason']})") +
+              f", {r['n_failed_actions']} failed actions, weights {r['distance_from_priors']} from the priors", flush=True)
+        with open(table, "w", newline="") as fh:   # rewritten after each episode: a stopped run keeps what it did
+            w = csv.DictWriter(fh, fieldnames=COLUMNS)
+            w.writeheader()
+            w.writerows(rows)
+    _plot(rows, out / "learning.png", scenario.name)
+    print(f"wrote {table}, {out / 'learning.png'} and {weights}")
+    return 0
+
+
+def _plot(rows: list[dict], path: Path, title: str) -> None:
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    ep = [r["episode"] for r in rows]
+    fig, axes = plt.subplots(3, 1, figsize=(6, 6.5), sharex=True)
+    drank = [(r["episode"], r["time_to_drink"]) for r in rows if r["success"]]
+    failed = [r["episode"] for r in rows if not r["success"]]
+    axes[0].plot([e for e, _ in drank], [t for _, t in drank], "o-", label="drank")
+    if failed:
+        axes[0].plot(failed, [0] * len(failed), "x", color="tab:red", label="did not drink")
+    axes[0].set_ylabel("time to drink (s)")
+    axes[0].legend(fontsize=8)
+    axes[1].plot(ep, [r["n_failed_actions"] for r in rows], "o-", label="failed actions")
+    axes[1].plot(ep, [r["errors_communicated"] for r in rows], "s--", label="errors said")
+    axes[1].set_ylabel("per episode")
+    axes[1].legend(fontsize=8)
+    axes[2].plot(ep, [r["distance_from_priors"] for r in rows], "o-")
+    axes[2].set_ylabel("weights from priors")
+    axes[2].set_xlabel("episode")
+    axes[0].set_title(f"learning from the user: {title}")
+    fig.tight_layout()
+    fig.savefig(path, dpi=100)
+    plt.close(fig)

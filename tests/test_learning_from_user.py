@@ -1,0 +1,131 @@
+"""Learning from the user (`assistbot.cognition.learning`): the grip-to-chain weights move after a success, toward
+the chain the person's act turned out to be, and only then; the seed's experiments keep their decisions while the
+robot learns from the default person; weights persist in a file, and a bad one is one line and exit status 2."""
+
+from __future__ import annotations
+
+import csv
+import json
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from _scenarios import TINY
+from assistbot import cli, task
+from assistbot.cognition import Cognition
+from assistbot.cognition.learning import LEARNING_RATE, read_weights
+from assistbot.cognition.replay import replay
+from assistbot.cognition.timeline import load_timeline, timeline_from_dict
+from assistbot.errors import UserError
+
+TIMELINES = Path(__file__).resolve().parents[1] / "scenarios" / "timelines"
+POUR_ABOVE = TIMELINES / "pour_above_grip.yaml"
+POUR_CHAIN = "Reach-grasp-SG-open-bottle-to-pour"
+OPEN_HAND_OVER = "Reach-grasp-AG-open-bottle-to-hand-over"
+CLOSED_HAND_OVER = "Reach-grasp-AG-closed-bottle-to-hand-over"
+
+
+def decided(rep) -> list[str]:
+    return [a for _, kind, a in rep.agent.decisions() if kind == "decide"]
+
+
+def weights(path: Path) -> dict:
+    return read_weights(path)[0]["OL->ASL"]
+
+
+def test_without_learning_nothing_is_learnt_and_the_priors_stay():
+    cog = Cognition()
+    assert not cog.learns and cog.learned_weights() == {} and "GRIP" not in cog.net.spec.fields
+    prior = cog.net.table("OL->ASL")
+    rep = replay(load_timeline(POUR_ABOVE), record=False)
+    assert np.array_equal(rep.agent.net.table("OL->ASL"), prior)
+
+
+def test_an_above_grip_that_pours_is_misread_then_read_right_after_one_success(tmp_path):
+    """The seed's priors read an above grip on the open bottle as a hand-over: the robot decides to receive it.
+    The glass filled (a sub-goal reached) opens SUCCESS; the next time the robot answers the grip by waiting."""
+    path = tmp_path / "weights.json"
+    tl = load_timeline(POUR_ABOVE)
+    first = replay(tl, record=False, learn=path)
+    assert decided(first) == ["Receive-object"]
+    w = weights(path)
+    assert w[POUR_CHAIN]["grasp_ag_bottle"] > 0.95                    # 0 in the priors
+    assert w[OPEN_HAND_OVER]["grasp_ag_bottle"] < 0.5                  # 1 in the priors: read, then given up
+    assert w[CLOSED_HAND_OVER]["grasp_ag_bottle"] == 1.0               # never read here: kept
+    assert w[POUR_CHAIN]["grasp_sg_bottle"] == 1.0                     # a grip not seen: kept
+    second = replay(tl, record=False, learn=path)
+    assert decided(second) == ["Wait"]
+    assert read_weights(path)[1] == 2
+    every = [v for row in weights(path).values() for v in row.values()]
+    assert min(every) >= 0.0 and max(every) <= 1.0
+
+
+def test_nothing_is_learnt_without_a_success(tmp_path):
+    data = load_timeline(POUR_ABOVE)
+    events = [e for e in data.events if "glass" not in e or e["t"] == 0.0]   # the glass never fills
+    tl = timeline_from_dict({"name": "no_success", "duration": data.duration, "events": events})
+    path = tmp_path / "weights.json"
+    replay(tl, record=False, learn=path)
+    prior = Cognition(overrides={"learning.rate": LEARNING_RATE}).learned_weights()["OL->ASL"]
+    learnt = weights(path)
+    assert all(learnt[c][g] == pytest.approx(prior[c][g], abs=1e-3) for c in prior for g in prior[c])
+
+
+@pytest.mark.parametrize("name", ["fig3", "fig4", "fig5", "give_glass", "error_drink_empty_glass"])
+def test_the_seeds_experiments_keep_their_decisions_while_learning_from_the_default_person(name, tmp_path):
+    tl = load_timeline(TIMELINES / f"{name}.yaml")
+    with_priors = decided(replay(tl, record=False))
+    path = tmp_path / "weights.json"
+    for _ in range(5):
+        assert decided(replay(tl, record=False, learn=path)) == with_priors
+
+
+def test_only_the_grip_weights_learn():
+    cog = Cognition(overrides={"learning.rate": LEARNING_RATE})
+    tables = cog.learned_weights()
+    assert list(tables) == ["OL->ASL"]
+    assert {g for row in tables["OL->ASL"].values() for g in row} == set(task.OL_GRIP_ITEMS)
+
+
+@pytest.mark.parametrize("content, key, words", [
+    ("not json", "line 1", "not JSON"),
+    ('{"format": "something else"}', "format", "not a weights file"),
+    ('{"format": "assistbot learned weights", "couplings": {"OL->IL": {}}}', "couplings.OL->IL", "does not learn"),
+    ('{"format": "assistbot learned weights", "couplings": {"OL->ASL": {"Point-to-glass": {"grasp_ag_glass": 3}}}}',
+     "couplings.OL->ASL.Point-to-glass.grasp_ag_glass", "outside learn.bounds"),
+    ('{"format": "assistbot learned weights", "couplings": {"OL->ASL": {"Point-to-glass": {"pour": 0.5}}}}',
+     "couplings.OL->ASL.Point-to-glass.pour", "does not learn"),
+    ('{"format": "assistbot learned weights", "episodes": -1, "couplings": {}}', "episodes", ">= 0"),
+])
+def test_a_bad_weights_file_names_itself_and_the_key(tmp_path, content, key, words):
+    path = tmp_path / "w.json"
+    path.write_text(content)
+    with pytest.raises(UserError) as err:
+        replay(load_timeline(POUR_ABOVE), record=False, learn=path)
+    assert err.value.where == str(path) and err.value.key == key and words in err.value.message
+    assert path.read_text() == content, "a refused file is left as it was"
+
+
+def test_the_cli_learns_on_a_timeline_and_refuses_an_agent_that_does_not_learn(tmp_path, capsys):
+    path = tmp_path / "w.json"
+    args = ["think", str(POUR_ABOVE), "--learn", str(path), "--no-figures", "--out", str(tmp_path / "t")]
+    assert cli.main(args) == 0 and cli.main(args) == 0
+    out = capsys.readouterr().out
+    assert "DECIDE   Receive-object" in out and "DECIDE   Wait" in out and read_weights(path)[1] == 2
+    assert cli.main(args + ["--agent", "fsm"]) == 2
+    assert "only the field architecture" in capsys.readouterr().err
+
+
+def test_assistbot_learn_writes_one_row_per_episode_and_the_curve(tmp_path, capsys):
+    scenario = tmp_path / "tiny.yaml"
+    scenario.write_text(TINY)
+    out = tmp_path / "learn"
+    assert cli.main(["learn", str(scenario), "--episodes", "2", "--perception", "oracle", "--out", str(out)]) == 0
+    rows = list(csv.DictReader(open(out / "learning.csv")))
+    assert [r["episode"] for r in rows] == ["1", "2"] and [r["seed"] for r in rows] == ["0", "1"]
+    assert all(r["end_reason"] == "time limit" and float(r["distance_from_priors"]) >= 0 for r in rows)
+    assert (out / "learning.png").stat().st_size > 0 and read_weights(out / "weights.json")[1] == 2
+    assert cli.main(["learn", str(scenario), "--episodes", "1", "--out", str(out)]) == 2, "an earlier run is kept"
+    assert "--force" in capsys.readouterr().err
+    assert json.loads((out / "weights.json").read_text())["episodes"] == 2
