@@ -331,6 +331,7 @@ def test_learned_weights_round_trip_survive_reset_and_parameter_changes_and_forg
     ({"learn": {"rate": 1.0, "sources": ["z"]}}, "learn.sources", "unknown item"),
     ({"learn": {"rate": 1.0, "sources": "x"}}, "learn.sources", "a list"),
     ({"learn": {"rate": 1.0, "post_threshold": -0.1}}, "learn.post_threshold", ">= 0"),
+    ({"learn": {"rate": 1.0, "keep": 1.5}}, "learn.keep", "from 0 to 1"),
 ])
 def test_bad_learning_declarations_name_the_coupling_and_key(change, key, words):
     spec = {"dt": 0.01, "fields": {"pre": _field(["x"]), "post": _field(["p"]), "G": _field(["ok"])},
@@ -442,3 +443,22 @@ def test_weights_of_items_that_do_not_learn_stay_at_their_prior_through_a_file(b
         net.set_table("pre->post", {"p": {"x": 1.0, "y": 0.5}})
     assert err.value.key == "table.p.y" and "does not learn" in err.value.message
     assert net.table("pre->post")[0, 0] == 1.0, "a refused table changes nothing"
+
+
+@pytest.mark.parametrize("backend", BACKENDS)
+def test_a_weight_keeps_its_share_of_the_prior(backend):
+    """keep 0.5: x -> p (prior 0.8) unlearnt toward 0 stops at 0.4; x -> q (prior 0) may grow and fall back to 0."""
+    net = Network.from_dict({
+        "dt": 0.01,
+        "fields": {"pre": _field(["x"], 4.0), "post": _field(["p", "q"], 4.0), "G": _field(["ok"], 4.0)},
+        "couplings": [{"source": "pre", "target": "post", "k": 0.0, "table": {"p": {"x": 0.8}},
+                       "learn": {"rate": 1.0, "decay": 1.0, "bounds": [0.0, 1.0], "keep": 0.5}}],
+    }, backend=backend)
+    net.set_stimulus("pre", "x", 8.0)
+    net.set_stimulus("post", "q", 8.0)
+    net.run(5.0)
+    w = net.table("pre->post")[:, 0]
+    assert w[0] == pytest.approx(0.4, abs=1e-9) and w[1] > 0.98   # q: toward rate/decay times its presence
+    with pytest.raises(FieldError) as err:
+        net.set_table("pre->post", {"p": {"x": 0.3}})
+    assert err.value.key == "table.p.x" and "learn.keep" in err.value.message

@@ -170,7 +170,8 @@ def default_config() -> dict[str, Any]:
         "learning": {
             "rate": 0.0,            # per s; `--learn` sets it to learning.LEARNING_RATE
             "decay": 1.0,           # per s: a grip's weight onto the chain read relaxes toward rate/decay ...
-            "highest": 1.0,         # ... within [0, highest], the priors' own range
+            "highest": 1.0,         # ... within [0, highest], the priors' own range,
+            "keep": 0.5,            # ... keeping half its prior: a reading given up once is not unlearnt outright
             "post_threshold": 0.05,  # a chain whose trace is below this took no part and keeps its weight
             "trace_build": 0.2,     # s: ASL's trace builds within a reading held this long ...
             "reading_memory": 2.0,  # s: ... and fades soon once another reading has replaced it
@@ -302,7 +303,8 @@ class CognitionConfig:
                                    "amplitude": 0.0, "threshold": 0.5}
         ol_asl = next(c for c in couplings if c["name"] == "OL->ASL")
         ol_asl["learn"] = {"rate": float(learn["rate"]), "decay": float(learn["decay"]), "gate": "SUCCESS.success",
-                           "bounds": [0.0, float(learn["highest"])], "traces": "post", "pre": "GRIP",
+                           "bounds": [0.0, float(learn["highest"])], "keep": float(learn["keep"]), "traces": "post",
+                           "pre": "GRIP",
                            "sources": list(task.OL_GRIP_ITEMS), "post_threshold": float(learn["post_threshold"])}
 
     def copy(self) -> "CognitionConfig":

@@ -249,9 +249,9 @@ def build_traces(f, m, offsets, mem_fields, mem_build, mem_decay, mem_thr):
 
 @inlined
 def learn(f, m, item_pos, w, dt, l_src, l_ns, l_tgt, l_nt, l_gate, l_tpre, l_tpost, l_pre_item, l_pre_ptr, l_learns,
-          l_post_thr, l_rate, l_decay, l_lo, l_hi, l_ptr):
+          l_post_thr, l_rate, l_decay, l_floor, l_hi, l_ptr):
     """w += dt g c_pre (rate c_post - decay w) where the weight learns and c_post exceeds the post threshold,
-    clipped to the bounds (see compiled); each c the output f, or the memory trace m on a traced side, c_pre
+    clipped to [its floor, the upper bound] (see compiled); each c the output f, or the memory trace m on a traced side, c_pre
     read at each source's pre item."""
     for L in range(l_src.size):
         ns, t0, p0, q0 = l_ns[L], l_tgt[L], l_ptr[L], l_pre_ptr[L]
@@ -268,7 +268,7 @@ def learn(f, m, item_pos, w, dt, l_src, l_ns, l_tgt, l_nt, l_gate, l_tpre, l_tpo
                 if l_learns[q] == 0.0 or at < 0:
                     continue
                 v = w[q] + dt * g * cpre[item_pos[at]] * (l_rate[L] * post - l_decay[L] * w[q])
-                w[q] = l_lo[L] if v < l_lo[L] else (l_hi[L] if v > l_hi[L] else v)
+                w[q] = l_floor[q] if v < l_floor[q] else (l_hi[L] if v > l_hi[L] else v)
 
 
 @jit
@@ -281,7 +281,7 @@ def run(n_steps, u, S, S_ext, stim_item, xi, use_noise,
         f, buf, proj, pad, tmp, rate, d, tbuf,
         m, w, use_mem, mem_fields, mem_amp, mem_build, mem_decay, mem_thr,
         dt, l_src, l_ns, l_tgt, l_nt, l_gate, l_tpre, l_tpost, l_pre_item, l_pre_ptr, l_learns, l_post_thr, l_k, l_rate,
-        l_decay, l_lo, l_hi, l_ptr):
+        l_decay, l_floor, l_hi, l_ptr):
     P = u.size
     for step in range(n_steps):
         sigmoid(u, beta, u0, f, tbuf)
@@ -333,7 +333,7 @@ def run(n_steps, u, S, S_ext, stim_item, xi, use_noise,
                 for q in range(R_indptr[m_], R_indptr[m_ + 1]):
                     S[R_indices[q]] += dm * R_data[q]
         learn(f, m, item_pos, w, dt, l_src, l_ns, l_tgt, l_nt, l_gate, l_tpre, l_tpost, l_pre_item, l_pre_ptr, l_learns,
-              l_post_thr, l_rate, l_decay, l_lo, l_hi, l_ptr)
+              l_post_thr, l_rate, l_decay, l_floor, l_hi, l_ptr)
         if use_noise:
             for p in range(P):
                 u[p] += dt_tau[p] * (rate[p] + S[p]) + noise_scale[p] * xi[step, p]

@@ -254,7 +254,7 @@ class LearningArrays:
     k: np.ndarray
     rate: np.ndarray
     decay: np.ndarray
-    low: np.ndarray
+    floor: np.ndarray   # flat like the weights: the lowest each may fall to (lower bound + keep x (prior - bound))
     high: np.ndarray
     ptr: np.ndarray     # (L+1,) start of each table in the flat weights
     prior: np.ndarray   # flat weights as the spec gives them
@@ -316,7 +316,7 @@ def _learning_arrays(spec: NetworkSpec, item_off: dict[str, int]) -> LearningArr
         k=floats([c.k for c in learned]),
         rate=floats([r.rate for r in rules]),
         decay=floats([r.decay for r in rules]),
-        low=floats([r.bounds[0] for r in rules]),
+        floor=np.concatenate([r.bounds[0] + r.keep * (p - r.bounds[0]) for r, p in zip(rules, priors)]) if priors else np.zeros(0),
         high=floats([r.bounds[1] for r in rules]),
         ptr=ints(np.concatenate([[0], np.cumsum([p.size for p in priors])])),
         prior=np.concatenate(priors) if priors else np.zeros(0),

@@ -100,7 +100,7 @@ class Network:
                     before = old_L.table(old_w, j)
                     if before.shape == L.table(self.state_w, i).shape:
                         learns = L.table(L.learns, i) > 0    # a weight kept at its prior need not lie within the bounds
-                        L.table(self.state_w, i)[:] = np.where(learns, np.clip(before, L.low[i], L.high[i]), before)
+                        L.table(self.state_w, i)[:] = np.where(learns, np.clip(before, L.table(L.floor, i), L.high[i]), before)
             for key, amp in getattr(self, "_item_stimuli", {}).items():
                 self._stim_item[self._item(*key)] = amp
         if fresh:
@@ -311,6 +311,14 @@ class Network:
                     raise FieldError(spec.where, f"table.{t}.{s}", f"does not learn ({s!r} is not in learn.sources); "
                                                                    f"it stays at its prior {prior[m, j]:g}, got {given:g}")
                 new[m, j] = prior[m, j]
+        for j, s in enumerate(src):
+            if not learn.learns(s):
+                continue
+            for m, t in enumerate(tgt):
+                floor = learn.bounds[0] + learn.keep * (prior[m, j] - learn.bounds[0])
+                if new[m, j] < floor:
+                    raise FieldError(spec.where, f"table.{t}.{s}", f"the weight {new[m, j]:g} is below {floor:g}: it "
+                                                                   f"keeps learn.keep={learn.keep:g} of its prior")
         self._c.learning.table(self.state_w, i)[:] = new
 
     def learned_tables(self) -> dict[str, dict[str, dict[str, float]]]:

@@ -278,7 +278,7 @@ class _Coupling:
         return fields_by_name[self.source], fields_by_name[self.target]
 
 
-LEARN_KEYS = ["rate", "decay", "gate", "bounds", "traces", "pre", "sources", "post_threshold"]
+LEARN_KEYS = ["rate", "decay", "gate", "bounds", "keep", "traces", "pre", "sources", "post_threshold"]
 TRACE_SIDES = ("none", "pre", "post", "both")
 
 
@@ -306,6 +306,10 @@ class LearnSpec:
     - ``post_threshold``: only the weights onto target items whose c_m exceeds it change (default 0: with
       traces, a target never active keeps its weights; one that was active and lost to another relaxes
       toward what is left of its trace).
+
+    ``keep``: the share (0 to 1) of its prior, above the lower bound, that a weight keeps: it never falls
+    below ``lowest + keep * (prior - lowest)`` (default 0: down to the bound), so one lost reading cannot
+    unlearn an association outright.
     """
 
     rate: float = 0.0
@@ -316,6 +320,7 @@ class LearnSpec:
     pre: str | None = None
     sources: list[str] | None = None
     post_threshold: float = 0.0
+    keep: float = 0.0
 
     def validate(self, where: str, fields_by_name: Mapping[str, "FieldSpec"], source: "FieldSpec | None" = None,
                  target: "FieldSpec | None" = None) -> None:
@@ -331,6 +336,9 @@ class LearnSpec:
         if self.gate is not None:
             gate_item(where, self.gate, fields_by_name)
         self.post_threshold = _number(where, "learn.post_threshold", self.post_threshold, nonneg=True)
+        self.keep = _number(where, "learn.keep", self.keep, nonneg=True)
+        if self.keep > 1.0:
+            raise FieldError(where, "learn.keep", f"is a share of the prior, from 0 to 1; got {self.keep:g}")
         if self.sources is not None:
             if isinstance(self.sources, str) or not isinstance(self.sources, (list, tuple)):
                 raise FieldError(where, "learn.sources", f"must be a list of source items, got {self.sources!r}")

@@ -131,7 +131,7 @@ class NumpyStepper:
             dW = dt * g * pre[None, :] * (L.rate[i] * post[:, None] - L.decay[i] * W)
             learns = L.table(L.learns, i) * (post > L.post_threshold[i])[:, None]
             W += learns * dW
-            W[:] = np.where(learns > 0, np.clip(W, L.low[i], L.high[i]), W)
+            W[:] = np.where(learns > 0, np.clip(W, L.table(L.floor, i), L.high[i]), W)
 
 
 def _kernels():
@@ -189,7 +189,7 @@ class NumbaStepper:
         self._learning = (
             mem.any, mem.fields, mem.amplitude, mem.build, mem.decay, mem.threshold,
             c.spec.dt, L.source, L.n_source, L.target, L.n_target, L.gate, L.trace_pre, L.trace_post, L.pre_item,
-            L.pre_ptr, L.learns, L.post_threshold, L.k, L.rate, L.decay, L.low, L.high, L.ptr,
+            L.pre_ptr, L.learns, L.post_threshold, L.k, L.rate, L.decay, L.floor, L.high, L.ptr,
         )
 
     def run(self, n: int, u: np.ndarray, S: np.ndarray, S_ext: np.ndarray, stim_item: np.ndarray, xi: np.ndarray | None,
