@@ -99,12 +99,15 @@ def test_only_an_active_source_items_weights_change_and_only_while_the_gate_is_o
     assert np.abs(w[:, 1]).max() < 1e-3, "the inactive source item's weights stay where they were"
 
 
-def traced_hebbian_net(backend: str, sources: list[str] | None = None, post_threshold: float = 0.0) -> Network:
+def traced_hebbian_net(backend: str, sources: list[str] | None = None, post_threshold: float = 0.0,
+                       targets: list[str] | None = None) -> Network:
     memory = {"tau_build": 0.1, "tau_decay": 1.0, "amplitude": 0.0, "threshold": 0.5}
     learn = {"rate": 2.0, "decay": 1.0, "gate": "G.ok", "bounds": [0.0, 2.0], "traces": "both",
              "post_threshold": post_threshold}
     if sources is not None:
         learn["sources"] = sources
+    if targets is not None:
+        learn["targets"] = targets
     return Network.from_dict({
         "dt": 0.01,
         "fields": {"pre": _field(["x", "y"], 4.0, memory=memory), "post": _field(["p", "q", "r"], 4.0, memory=memory),
@@ -330,6 +333,7 @@ def test_learned_weights_round_trip_survive_reset_and_parameter_changes_and_forg
     ({"learn": {"rate": 1.0, "pre": "G"}}, "learn.pre", "lacks the learning source items x"),
     ({"learn": {"rate": 1.0, "sources": ["z"]}}, "learn.sources", "unknown item"),
     ({"learn": {"rate": 1.0, "sources": "x"}}, "learn.sources", "a list"),
+    ({"learn": {"rate": 1.0, "targets": ["z"]}}, "learn.targets", "unknown item"),
     ({"learn": {"rate": 1.0, "post_threshold": -0.1}}, "learn.post_threshold", ">= 0"),
     ({"learn": {"rate": 1.0, "keep": 1.5}}, "learn.keep", "from 0 to 1"),
 ])
@@ -436,6 +440,11 @@ def test_weights_of_items_that_do_not_learn_stay_at_their_prior_through_a_file(b
     net = traced_hebbian_net(backend, sources=["x"])
     tables = net.learned_tables()
     assert tables == {"pre->post": {"p": {"x": 0.2}, "q": {"x": 0.2}, "r": {"x": 0.2}}}, "only the learning weights"
+    onto_p = traced_hebbian_net(backend, sources=["x"], targets=["p"])
+    assert onto_p.learned_tables() == {"pre->post": {"p": {"x": 0.2}}}
+    with pytest.raises(FieldError) as err:
+        onto_p.set_table("pre->post", {"p": {"x": 1.0}, "q": {"x": 0.7}})
+    assert err.value.key == "table.q.x" and "does not learn" in err.value.message
     net.set_table("pre->post", {"p": {"x": 1.5}})     # x -> q, r left out: 0; y's weights left out: their prior
     assert np.array_equal(net.table("pre->post"), [[1.5, -1.0], [0.0, -1.0], [0.0, -1.0]])
     net.set_table("pre->post", {"p": {"x": 1.0, "y": -1.0}})   # y's prior given as it is: accepted

@@ -100,10 +100,12 @@ def test_the_seeds_experiments_keep_their_decisions_while_learning_from_the_defa
         assert decided(replay(tl, record=False, learn=path)) == with_priors
 
 
-def test_only_the_grip_weights_learn():
+def test_only_what_a_grip_means_learns():
+    """The weights from the grip items onto the chains a grip begins; the gestures' chains keep their own cues."""
     cog = Cognition(overrides={"learning.rate": LEARNING_RATE})
     tables = cog.learned_weights()
     assert list(tables) == ["OL->ASL"]
+    assert set(tables["OL->ASL"]) == set(task.GRASP_CHAINS) and "Request-object-with-open-hand" not in task.GRASP_CHAINS
     assert {g for row in tables["OL->ASL"].values() for g in row} == set(task.OL_GRIP_ITEMS)
 
 
@@ -111,8 +113,10 @@ def test_only_the_grip_weights_learn():
     ("not json", "line 1", "not JSON"),
     ('{"format": "something else"}', "format", "not a weights file"),
     ('{"format": "assistbot learned weights", "couplings": {"OL->IL": {}}}', "couplings.OL->IL", "does not learn"),
-    ('{"format": "assistbot learned weights", "couplings": {"OL->ASL": {"Point-to-glass": {"grasp_ag_glass": 3}}}}',
-     "couplings.OL->ASL.Point-to-glass.grasp_ag_glass", "outside learn.bounds"),
+    ('{"format": "assistbot learned weights", "couplings": {"OL->ASL": {"Reach-grasp-SG-glass-to-turn": {"grasp_ag_glass": 3}}}}',
+     "couplings.OL->ASL.Reach-grasp-SG-glass-to-turn.grasp_ag_glass", "outside learn.bounds"),
+    ('{"format": "assistbot learned weights", "couplings": {"OL->ASL": {"Point-to-glass": {"grasp_ag_glass": 0.5}}}}',
+     "couplings.OL->ASL.Point-to-glass.grasp_ag_glass", "does not learn"),
     ('{"format": "assistbot learned weights", "couplings": {"OL->ASL": {"Point-to-glass": {"pour": 0.5}}}}',
      "couplings.OL->ASL.Point-to-glass.pour", "does not learn"),
     ('{"format": "assistbot learned weights", "episodes": -1, "couplings": {}}', "episodes", ">= 0"),

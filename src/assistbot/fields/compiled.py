@@ -289,7 +289,7 @@ def _learning_arrays(spec: NetworkSpec, item_off: dict[str, int]) -> LearningArr
         else:
             held = spec.fields[rule.pre].items
             pre_items.append([item_off[rule.pre] + held.index(s) if s in held else -1 for s in src])
-    learns = [np.tile([float(rule.learns(s)) for s in spec.fields[c.source].items], len(spec.fields[c.target].items))
+    learns = [np.array([float(rule.learns(s, t)) for t in spec.fields[c.target].items for s in spec.fields[c.source].items])
               for c, rule in zip(learned, rules)]
     gates = []
     for c, rule in zip(learned, rules):

@@ -303,18 +303,18 @@ class Network:
         assert learn is not None
         src, tgt = self.spec.fields[spec.source].items, self.spec.fields[spec.target].items
         for j, s in enumerate(src):
-            if learn.learns(s):
-                continue
             for m, t in enumerate(tgt):   # a weight that does not learn stays at its prior (left out: the prior)
+                if learn.learns(s, t):
+                    continue
                 given = weights.table.get(t, {}).get(s)
                 if given is not None and given != prior[m, j]:
-                    raise FieldError(spec.where, f"table.{t}.{s}", f"does not learn ({s!r} is not in learn.sources); "
+                    raise FieldError(spec.where, f"table.{t}.{s}", f"does not learn (not in learn.sources/targets); "
                                                                    f"it stays at its prior {prior[m, j]:g}, got {given:g}")
                 new[m, j] = prior[m, j]
         for j, s in enumerate(src):
-            if not learn.learns(s):
-                continue
             for m, t in enumerate(tgt):
+                if not learn.learns(s, t):
+                    continue
                 floor = learn.bounds[0] + learn.keep * (prior[m, j] - learn.bounds[0])
                 if new[m, j] < floor:
                     raise FieldError(spec.where, f"table.{t}.{s}", f"the weight {new[m, j]:g} is below {floor:g}: it "
@@ -322,7 +322,7 @@ class Network:
         self._c.learning.table(self.state_w, i)[:] = new
 
     def learned_tables(self) -> dict[str, dict[str, dict[str, float]]]:
-        """Every learning coupling's learning weights now (those of its ``learn.sources``),
+        """Every learning coupling's learning weights now (those from its ``learn.sources`` onto its ``targets``),
         {coupling: {target item: {source item: weight}}}: plain data for a JSON file, read back with `set_table`."""
         out = {}
         for name in self._c.learning.names:
@@ -330,8 +330,9 @@ class Network:
             assert c.learn is not None
             a = self.table(name)
             src, tgt = self.spec.fields[c.source].items, self.spec.fields[c.target].items
-            out[name] = {t: {s_item: float(a[i, j]) for j, s_item in enumerate(src) if c.learn.learns(s_item)}
-                         for i, t in enumerate(tgt)}
+            rows = {t: {s_item: float(a[i, j]) for j, s_item in enumerate(src) if c.learn.learns(s_item, t)}
+                    for i, t in enumerate(tgt)}
+            out[name] = {t: row for t, row in rows.items() if row}
         return out
 
     def _outputs(self) -> np.ndarray:

@@ -278,7 +278,7 @@ class _Coupling:
         return fields_by_name[self.source], fields_by_name[self.target]
 
 
-LEARN_KEYS = ["rate", "decay", "gate", "bounds", "keep", "traces", "pre", "sources", "post_threshold"]
+LEARN_KEYS = ["rate", "decay", "gate", "bounds", "keep", "traces", "pre", "sources", "targets", "post_threshold"]
 TRACE_SIDES = ("none", "pre", "post", "both")
 
 
@@ -301,8 +301,8 @@ class LearnSpec:
     - ``pre``: another field whose items named like the learning sources give c_j, e.g. a working memory
       that holds the source's last act through what follows it (the coupling still drives its target from
       its source);
-    - ``sources``: the source items whose weights learn (default all); the others keep their prior, and
-      only the learning weights are held to ``bounds``;
+    - ``sources``, ``targets``: the source and target items whose weights learn (default all); the others
+      keep their prior, and only the learning weights are held to ``bounds``;
     - ``post_threshold``: only the weights onto target items whose c_m exceeds it change (default 0: with
       traces, a target never active keeps its weights; one that was active and lost to another relaxes
       toward what is left of its trace).
@@ -319,6 +319,7 @@ class LearnSpec:
     traces: str = "none"
     pre: str | None = None
     sources: list[str] | None = None
+    targets: list[str] | None = None
     post_threshold: float = 0.0
     keep: float = 0.0
 
@@ -339,22 +340,25 @@ class LearnSpec:
         self.keep = _number(where, "learn.keep", self.keep, nonneg=True)
         if self.keep > 1.0:
             raise FieldError(where, "learn.keep", f"is a share of the prior, from 0 to 1; got {self.keep:g}")
-        if self.sources is not None:
-            if isinstance(self.sources, str) or not isinstance(self.sources, (list, tuple)):
-                raise FieldError(where, "learn.sources", f"must be a list of source items, got {self.sources!r}")
-            self.sources = list(self.sources)
-            if source is not None:
-                for s in self.sources:
-                    if s not in source.items:
-                        raise FieldError(where, "learn.sources", f"unknown item {s!r} of source field '{source.name}'; "
-                                                                 f"known: {', '.join(source.items)}")
+        for key, end in (("sources", source), ("targets", target)):
+            listed = getattr(self, key)
+            if listed is None:
+                continue
+            if isinstance(listed, str) or not isinstance(listed, (list, tuple)):
+                raise FieldError(where, f"learn.{key}", f"must be a list of {key[:-1]} items, got {listed!r}")
+            setattr(self, key, list(listed))
+            if end is not None:
+                for item in listed:
+                    if item not in end.items:
+                        raise FieldError(where, f"learn.{key}", f"unknown item {item!r} of {key[:-1]} field '{end.name}'; "
+                                                                f"known: {', '.join(end.items)}")
         pre = source
         if self.pre is not None:
             if not isinstance(self.pre, str) or self.pre not in fields_by_name:
                 raise FieldError(where, "learn.pre", f"no field named {self.pre!r}; known: {', '.join(fields_by_name)}")
             pre = fields_by_name[self.pre]
             if source is not None:
-                missing = [s for s in source.items if self.learns(s) and s not in pre.items]
+                missing = [s for s in source.items if self.learns_from(s) and s not in pre.items]
                 if missing:
                     raise FieldError(where, "learn.pre", f"field '{pre.name}' lacks the learning source items "
                                                          f"{', '.join(missing)}")
@@ -365,9 +369,13 @@ class LearnSpec:
                 raise FieldError(where, "learn.traces", f"reads the {side}-synaptic memory trace, and field '{end.name}' "
                                                         f"has no 'memory'")
 
-    def learns(self, source_item: str) -> bool:
-        """Whether the weights from this source item change."""
+    def learns_from(self, source_item: str) -> bool:
+        """Whether weights from this source item learn (onto the learning targets)."""
         return self.sources is None or source_item in self.sources
+
+    def learns(self, source_item: str, target_item: str) -> bool:
+        """Whether the weight from this source item onto this target item changes."""
+        return self.learns_from(source_item) and (self.targets is None or target_item in self.targets)
 
     @classmethod
     def from_dict(cls, where: str, d: Any) -> "LearnSpec":
@@ -438,7 +446,7 @@ class CouplingSpec(_Coupling):
             lo, hi = self.learn.bounds
             for t in tgt.items:            # every learning weight, those left out (0) too
                 for s in src.items:
-                    if not self.learn.learns(s):
+                    if not self.learn.learns(s, t):
                         continue
                     a = clean.get(t, {}).get(s, 0.0)
                     if not lo <= a <= hi:

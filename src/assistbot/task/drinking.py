@@ -168,6 +168,8 @@ ASL_CHAINS: tuple[Chain, ...] = (
     Chain("Point-to-glass", {"point_glass": 3.8}, {}, {}),
 )
 ASL_ITEMS: tuple[str, ...] = tuple(c.name for c in ASL_CHAINS)
+#: the chains a grip on an object begins (what a grip can mean; the gestures are read from the gesture alone)
+GRASP_CHAINS: tuple[str, ...] = tuple(c.name for c in ASL_CHAINS if any(p in OL_GRIP_ITEMS for p in c.primitives))
 
 # ---------------------------------------------------------------------------------------------
 # Intention layer (IL)
