@@ -144,9 +144,11 @@ def test_assistbot_learn_writes_one_row_per_episode_and_the_curve(tmp_path, caps
     scenario = tmp_path / "tiny.yaml"
     scenario.write_text(TINY)
     out = tmp_path / "learn"
-    assert cli.main(["learn", str(scenario), "--episodes", "2", "--perception", "oracle", "--out", str(out)]) == 0
+    assert cli.main(["learn", str(scenario), "--episodes", "2", "--perception", "oracle", "--out", str(out),
+                     "--compare"]) == 0
     rows = list(csv.DictReader(open(out / "learning.csv")))
-    assert [r["episode"] for r in rows] == ["1", "2"] and [r["seed"] for r in rows] == ["0", "1"]
+    assert [(r["episode"], r["seed"], r["weights"]) for r in rows] == [
+        ("1", "0", "learnt"), ("1", "0", "priors"), ("2", "1", "learnt"), ("2", "1", "priors")]
     assert all(r["end_reason"] == "time limit" and float(r["distance_from_priors"]) >= 0 for r in rows)
     assert (out / "learning.png").stat().st_size > 0 and read_weights(out / "weights.json")[1] == 2
     assert cli.main(["learn", str(scenario), "--episodes", "1", "--out", str(out)]) == 2, "an earlier run is kept"

@@ -11,7 +11,7 @@ HELP = "run a scenario N times in a row with the same person, learning the grip-
        "learning.csv, learning.png and weights.json"
 ORDER = 12
 
-COLUMNS = ["episode", "seed", "success", "time_to_drink", "end_reason", "n_decisions", "n_failed_actions",
+COLUMNS = ["episode", "seed", "weights", "success", "time_to_drink", "end_reason", "n_decisions", "n_failed_actions",
            "errors_communicated", "distance_from_priors"]
 
 
@@ -26,6 +26,9 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument("--set", dest="sets", action="append", default=[], metavar="PATH=VALUE",
                    help="override a parameter by dotted path, as 'assistbot run' does, e.g. --set human.partner=1042 "
                         "(repeatable)")
+    p.add_argument("--compare", action="store_true",
+                   help="also run each episode (the same seed) with the priors, without learning: rows with weights "
+                        "'priors' beside the 'learnt' ones, and both in the plot")
     p.add_argument("--force", action="store_true", help="start over in a folder that holds an earlier learning run")
 
 
@@ -62,7 +65,26 @@ def run(args: argparse.Namespace) -> int:
     weights.unlink(missing_ok=True)
     priors = None
     first = scenario.seed if args.seed is None else args.seed
-    rows = []
+    rows: list[dict] = []
+
+    def row(i: int, kind: str, result, distance: float) -> None:
+        s = result.summary()
+        rows.append({
+            "episode": i + 1, "seed": first + i, "weights": kind, "success": result.success,
+            "time_to_drink": "" if result.time_to_drink is None else round(result.time_to_drink, 2),
+            "end_reason": result.end_reason, "n_decisions": len(result.decisions),
+            "n_failed_actions": sum(1 for a in s["actions"] if a["status"] == "failed"),
+            "errors_communicated": result.errors_communicated, "distance_from_priors": round(distance, 4),
+        })
+        r = rows[-1]
+        print(f"episode {r['episode']} (seed {r['seed']}, {kind}): " +
+              (f"drank at {r['time_to_drink']} s" if r["success"] else f"did not drink ({r['end_reason']})") +
+              f", {r['n_failed_actions']} failed actions, weights {r['distance_from_priors']} from the priors", flush=True)
+        with open(table, "w", newline="") as fh:   # rewritten after each episode: a stopped run keeps what it did
+            w = csv.DictWriter(fh, fieldnames=COLUMNS)
+            w.writeheader()
+            w.writerows(rows)
+
     for i in range(args.episodes):
         result = run_scenario(scenario, out=None, perception=args.perception, seed=first + i, overrides=overrides,
                               video=False, learn=weights)
@@ -71,23 +93,10 @@ def run(args: argparse.Namespace) -> int:
             from assistbot.cognition import Cognition
 
             priors = Cognition(overrides={"learning.rate": learning.LEARNING_RATE}).learned_weights()
-        s = result.summary()
-        rows.append({
-            "episode": i + 1, "seed": first + i, "success": result.success,
-            "time_to_drink": "" if result.time_to_drink is None else round(result.time_to_drink, 2),
-            "end_reason": result.end_reason, "n_decisions": len(result.decisions),
-            "n_failed_actions": sum(1 for a in s["actions"] if a["status"] == "failed"),
-            "errors_communicated": result.errors_communicated,
-            "distance_from_priors": round(learning.distance_from_priors(tables, priors), 4),
-        })
-        r = rows[-1]
-        print(f"episode {r['episode']} (seed {r['seed']}): " +
-              (f"drank at {r['time_to_drink']} s" if r["success"] else f"did not drink ({r['end_reason']})") +
-              f", {r['n_failed_actions']} failed actions, weights {r['distance_from_priors']} from the priors", flush=True)
-        with open(table, "w", newline="") as fh:   # rewritten after each episode: a stopped run keeps what it did
-            w = csv.DictWriter(fh, fieldnames=COLUMNS)
-            w.writeheader()
-            w.writerows(rows)
+        row(i, "learnt", result, learning.distance_from_priors(tables, priors))
+        if args.compare:
+            row(i, "priors", run_scenario(scenario, out=None, perception=args.perception, seed=first + i,
+                                          overrides=overrides, video=False), 0.0)
     _plot(rows, out / "learning.png", scenario.name)
     print(f"wrote {table}, {out / 'learning.png'} and {weights}")
     return 0
@@ -99,20 +108,24 @@ def _plot(rows: list[dict], path: Path, title: str) -> None:
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    ep = [r["episode"] for r in rows]
     fig, axes = plt.subplots(3, 1, figsize=(6, 6.5), sharex=True)
-    drank = [(r["episode"], r["time_to_drink"]) for r in rows if r["success"]]
-    failed = [r["episode"] for r in rows if not r["success"]]
-    axes[0].plot([e for e, _ in drank], [t for _, t in drank], "o-", label="drank")
-    if failed:
-        axes[0].plot(failed, [0] * len(failed), "x", color="tab:red", label="did not drink")
+    for kind, marker in (("learnt", "o-"), ("priors", "s--")):
+        mine = [r for r in rows if r["weights"] == kind]
+        if not mine:
+            continue
+        drank = [(r["episode"], r["time_to_drink"]) for r in mine if r["success"]]
+        failed = [r["episode"] for r in mine if not r["success"]]
+        axes[0].plot([e for e, _ in drank], [t for _, t in drank], marker, label=f"{kind}: drank")
+        if failed:
+            axes[0].plot(failed, [0] * len(failed), "x", label=f"{kind}: did not drink")
+        axes[1].plot([r["episode"] for r in mine], [r["n_failed_actions"] + r["errors_communicated"] for r in mine],
+                     marker, label=kind)
+        if kind == "learnt":
+            axes[2].plot([r["episode"] for r in mine], [r["distance_from_priors"] for r in mine], marker)
     axes[0].set_ylabel("time to drink (s)")
     axes[0].legend(fontsize=8)
-    axes[1].plot(ep, [r["n_failed_actions"] for r in rows], "o-", label="failed actions")
-    axes[1].plot(ep, [r["errors_communicated"] for r in rows], "s--", label="errors said")
-    axes[1].set_ylabel("per episode")
+    axes[1].set_ylabel("failed actions +\nerrors said")
     axes[1].legend(fontsize=8)
-    axes[2].plot(ep, [r["distance_from_priors"] for r in rows], "o-")
     axes[2].set_ylabel("weights from priors")
     axes[2].set_xlabel("episode")
     axes[0].set_title(f"learning from the user: {title}")
