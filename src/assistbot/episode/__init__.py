@@ -42,7 +42,8 @@ def run_scenario(spec: str | Path | Scenario, out: str | Path | None = None, per
     scenario = spec if isinstance(spec, Scenario) else load_scenario(spec)
     if learn is not None:
         learning.check_learner(scenario.agent)
-        overrides = learning.learning_overrides(overrides or {})
+        # a rate the scenario file or the caller sets stays; without one, learning's own
+        overrides = {**(overrides or {}), **learning.learning_overrides({**scenario.overrides, **(overrides or {})})}
     ep = build_episode(scenario, perception=perception, seed=seed, overrides=overrides,
                        frame_every=FRAME_EVERY if (video and out is not None) else None, record_truth=record_truth)
     episodes = learning.load_into(ep.agent, learn) if learn is not None else 0
