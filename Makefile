@@ -7,7 +7,7 @@ BIN    := $(VENV)/bin
 STAMP  := $(VENV)/.installed
 DEBS   := libosmesa6 libegl1 libegl-mesa0 libgl1-mesa-dri espeak-ng
 
-.PHONY: demo test test-all lint bench matrix partners dnf-vs-fsm setup debs clean wheel-check
+.PHONY: demo test test-all lint bench matrix partners dnf-vs-fsm learning setup debs clean wheel-check
 
 setup: $(STAMP)
 
@@ -68,6 +68,13 @@ dnf-vs-fsm: $(STAMP)
 	  $(BIN)/assistbot sweep $$f --workers $(WORKERS) --no-progress || exit $$?; \
 	  $(BIN)/assistbot report render/sweeps/dnf-vs-fsm/$$n --by agent || exit $$?; \
 	done
+
+# Learning from the default person does not change what the robot does: the seed's Fig. 3-4 and Fig. 5, ten
+# episodes each learning in a row, each beside the same episode with the priors (vision; 40 episodes, about
+# 40 min on one core), into render/learn/.
+learning: $(STAMP)
+	$(BIN)/assistbot learn paper-fig3-4 --episodes 10 --compare --out render/learn/paper-fig3-4 --force
+	$(BIN)/assistbot learn paper-fig5 --episodes 10 --compare --out render/learn/paper-fig5 --force
 
 # The wheel as a user installs it: built, installed into a fresh venv, run from a temporary folder.
 wheel-check:
