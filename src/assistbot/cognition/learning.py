@@ -1,11 +1,12 @@
 """Learning from the user, across episodes: the grip-to-chain weights in a file.
 
 The seed assumes which grip means which goal (above grip: hand over; side grip: pour or turn) and
-proposes to learn it from the user. Here the OL -> ASL weights of the grip items (`task.OL_GRIP_ITEMS`)
-learn by the field library's gated Hebbian rule on memory traces (`CognitionConfig`'s ``learning``
-block): while SUCCESS is up (an action of the robot's finished as it should, or a sub-goal was
-reached), a grip OL remembers moves its weight toward the chain ASL read last, and away from a chain
-read before and given up; a chain that took no part keeps its weight.
+proposes to learn it from the user. Here the OL -> ASL weights from the grip items (`task.OL_GRIP_ITEMS`)
+onto the chains a grip begins (`task.GRASP_CHAINS`) learn by the field library's gated Hebbian rule
+(`CognitionConfig`'s ``learning`` block): while SUCCESS is up (an action of the robot's finished as it
+should, or a sub-goal was reached), the grip in hand (GRIP, a memory of the last grip seen) moves its
+weight toward the chain ASL read last (ASL's memory trace) and away from a chain read before and given
+up, keeping half its prior; a chain that took no part keeps its weight.
 
 A weights file carries what was learnt from one episode to the next::
 
@@ -28,7 +29,8 @@ from assistbot.errors import UserError
 
 #: the learning rate `--learn` switches on (per s). Above ``learning.decay`` (1/s): a grip's weight onto a chain
 #: read to the end (its trace above 2/3) relaxes to the priors' strength (``learning.highest``), most of the way
-#: within one success; onto a chain read and then given up, toward what is left of its trace, times 1.5
+#: within one success; onto a chain read and then given up, toward what is left of its trace times 1.5 (not below
+#: the share ``learning.keep`` of its prior)
 LEARNING_RATE = 1.5
 FORMAT = "assistbot learned weights"
 KEY = "--learn"
