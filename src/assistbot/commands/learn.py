@@ -35,23 +35,15 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
 def run(args: argparse.Namespace) -> int:
     import csv
 
-    from assistbot.cognition import learning
-    from assistbot.commands.run import parse_sets
+    from assistbot.cognition import Cognition, learning
+    from assistbot.commands.run import scenario_with_sets
     from assistbot.episode import run_scenario
     from assistbot.episode.builder import split_overrides
     from assistbot.errors import UserError
-    from assistbot.scenario import load_scenario, parse_scenario
-    from assistbot.sweep.jobs import scenario_data_with
-    from assistbot.sweep.spec import is_scenario_path
 
     if args.episodes < 1:
         raise UserError("--episodes", str(args.episodes), "must be 1 or more")
-    scenario = load_scenario(args.scenario)
-    overrides = parse_sets(args.sets)
-    edits = {k: v for k, v in overrides.items() if is_scenario_path(k)}
-    if edits:
-        scenario = parse_scenario(scenario_data_with(scenario, edits, "--set"), scenario.path)
-        overrides = {k: v for k, v in overrides.items() if k not in edits}
+    scenario, overrides = scenario_with_sets(args.scenario, args.sets)
     learning.check_learner(scenario.agent)
     split_overrides(overrides, "--set", scenario.agent)
     out = args.out or Path("render/learn") / scenario.name
@@ -63,17 +55,16 @@ def run(args: argparse.Namespace) -> int:
                                            "folder with --out")
     out.mkdir(parents=True, exist_ok=True)
     weights.unlink(missing_ok=True)
-    priors = None
+    priors = Cognition(overrides={"learning.rate": learning.LEARNING_RATE}).learned_weights()
     first = scenario.seed if args.seed is None else args.seed
     rows: list[dict] = []
 
     def row(i: int, kind: str, result, distance: float) -> None:
-        s = result.summary()
         rows.append({
             "episode": i + 1, "seed": first + i, "weights": kind, "success": result.success,
             "time_to_drink": "" if result.time_to_drink is None else round(result.time_to_drink, 2),
             "end_reason": result.end_reason, "n_decisions": len(result.decisions),
-            "n_failed_actions": sum(1 for a in s["actions"] if a["status"] == "failed"),
+            "n_failed_actions": result.n_failed_actions,
             "errors_communicated": result.errors_communicated, "distance_from_priors": round(distance, 4),
         })
         r = rows[-1]
@@ -89,10 +80,6 @@ def run(args: argparse.Namespace) -> int:
         result = run_scenario(scenario, out=None, perception=args.perception, seed=first + i, overrides=overrides,
                               video=False, learn=weights)
         tables, _ = learning.read_weights(weights)
-        if priors is None:
-            from assistbot.cognition import Cognition
-
-            priors = Cognition(overrides={"learning.rate": learning.LEARNING_RATE}).learned_weights()
         row(i, "learnt", result, learning.distance_from_priors(tables, priors))
         if args.compare:
             row(i, "priors", run_scenario(scenario, out=None, perception=args.perception, seed=first + i,

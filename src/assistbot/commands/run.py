@@ -57,23 +57,31 @@ def parse_sets(sets: list[str]) -> dict:
     return out
 
 
-def run(args: argparse.Namespace) -> int:
-    from assistbot.episode import run_scenario
-    from assistbot.episode.builder import split_overrides
-    from assistbot.episode.outputs import PARTIAL, earlier_run
-    from assistbot.errors import UserError
+def scenario_with_sets(spec: str, sets: list[str]):
+    """The scenario ``spec`` with the ``--set`` values that edit it (as a sweep's row sets them:
+    objects.NAME.zone/state/position, human.profile, agent) applied, and the other ``--set`` values as overrides."""
     from assistbot.scenario import load_scenario
     from assistbot.sweep.spec import is_scenario_path
 
-    scenario = load_scenario(args.scenario)
-    overrides = parse_sets(args.sets)
+    scenario = load_scenario(spec)
+    overrides = parse_sets(sets)
     edits = {k: v for k, v in overrides.items() if is_scenario_path(k)}
-    if edits:   # as a sweep's row sets them: objects.NAME.zone/state/position, human.profile, agent
+    if edits:
         from assistbot.scenario import parse_scenario
         from assistbot.sweep.jobs import scenario_data_with
 
         scenario = parse_scenario(scenario_data_with(scenario, edits, "--set"), scenario.path)
         overrides = {k: v for k, v in overrides.items() if k not in edits}
+    return scenario, overrides
+
+
+def run(args: argparse.Namespace) -> int:
+    from assistbot.episode import run_scenario
+    from assistbot.episode.builder import split_overrides
+    from assistbot.episode.outputs import PARTIAL, earlier_run
+    from assistbot.errors import UserError
+
+    scenario, overrides = scenario_with_sets(args.scenario, args.sets)
     if args.agent is not None:
         import dataclasses
 
@@ -92,11 +100,6 @@ def run(args: argparse.Namespace) -> int:
     if earlier and not args.force:
         state = "an unfinished run (PARTIAL)" if earlier == PARTIAL else "an earlier run (summary.json)"
         raise UserError(str(out), "--out", f"holds {state}; pass --force to replace it, or name another folder with --out")
-    if args.learn is not None:
-        from assistbot.cognition.learning import check_learner, read_weights
-
-        check_learner(scenario.agent)
-        read_weights(args.learn)   # a bad file stops the run before the episode, not after it
     result = run_scenario(scenario, out=out, perception=args.perception, seed=args.seed, overrides=overrides,
                           video=not args.no_video, progress=True, record_truth=args.record_truth, learn=args.learn)
     verdict = f"drank at t = {result.time_to_drink:.1f} s" if result.success else f"did not drink ({result.end_reason})"

@@ -48,6 +48,11 @@ class EpisodeResult:
     measures: dict = field(default_factory=dict)   # each `Measure`'s summary, by its name
     person: dict = field(default_factory=dict)     # the partner's attributes (human.population; {}: the default person)
 
+    @property
+    def n_failed_actions(self) -> int:
+        """The robot actions that ended failed (a decision the world did not bear out)."""
+        return sum(1 for a in self.actions if a["status"] == "failed")
+
     def summary(self) -> dict:
         return {
             "scenario": self.scenario, "seed": self.seed, "perception": self.perception,

@@ -68,7 +68,7 @@ def run_job(job: Job) -> dict[str, Any]:
         end_detail=" ".join(f"{k}={v}" for k, v in s["end_detail"].items()),
         decisions=" > ".join(decisions),
         n_decisions=len(decisions),
-        n_failed_actions=sum(1 for a in s["actions"] if a["status"] == "failed"),
+        n_failed_actions=result.n_failed_actions,
         errors_communicated=int(s["errors_communicated"]),
         answered_cues=None if cues is None else int(cues["answered"]),
         ignored_cues=None if cues is None else int(cues["ignored"]),
