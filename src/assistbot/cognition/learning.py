@@ -21,7 +21,6 @@ from __future__ import annotations
 
 import json
 import math
-import os
 from pathlib import Path
 from typing import Any, Mapping
 
@@ -97,12 +96,11 @@ def load_into(agent: Any, path: Path) -> int:
 
 def write_weights(path: Path, tables: Mapping[str, Any], episodes: int) -> None:
     """Write the learnt tables (atomically: an interrupted write leaves the old file whole)."""
+    from assistbot.episode.outputs import replace_text
+
     path = Path(path)
     path.parent.mkdir(parents=True, exist_ok=True)
-    tmp = path.with_name(path.name + ".tmp")
-    tmp.write_text(json.dumps({"format": FORMAT, "episodes": int(episodes), "couplings": tables}, indent=1) + "\n",
-                   encoding="utf-8")
-    os.replace(tmp, path)
+    replace_text(path, json.dumps({"format": FORMAT, "episodes": int(episodes), "couplings": tables}, indent=1) + "\n")
 
 
 def distance_from_priors(tables: Mapping[str, Mapping[str, Mapping[str, float]]],

@@ -51,7 +51,7 @@ def earlier_run(out: Path) -> str | None:
 def claim(out: Path) -> None:
     """Make ``out`` the folder of a run starting now: the PARTIAL marker first, then an earlier run's files go."""
     out.mkdir(parents=True, exist_ok=True)
-    _replace_text(out / PARTIAL, f"this run has not finished: started {time.strftime('%Y-%m-%d %H:%M:%S')}, "
+    replace_text(out / PARTIAL, f"this run has not finished: started {time.strftime('%Y-%m-%d %H:%M:%S')}, "
                                  f"process {os.getpid()}; the files here are incomplete\n")
     for name in RUN_FILES:
         (out / name).unlink(missing_ok=True)
@@ -63,7 +63,7 @@ def finish(out: Path) -> None:
     (out / PARTIAL).unlink(missing_ok=True)
 
 
-def _replace_text(path: Path, text: str) -> Path:
+def replace_text(path: Path, text: str) -> Path:
     """Write ``text`` to ``path`` whole or not at all: to a temporary name, then renamed into place."""
     tmp = path.with_name(path.name + ".tmp")
     tmp.write_text(text, encoding="utf-8")
@@ -109,7 +109,7 @@ class VideoRecorder:
 
 def write_log(episode: Episode, path: Path) -> Path:
     rows = sorted(episode.log, key=lambda r: r["t"])
-    return _replace_text(path, "".join(json.dumps(row, default=_jsonable) + "\n" for row in rows))
+    return replace_text(path, "".join(json.dumps(row, default=_jsonable) + "\n" for row in rows))
 
 
 def _jsonable(v):
@@ -124,7 +124,7 @@ def write_summary(result: EpisodeResult, path: Path, extra: dict | None = None) 
     data = result.summary()
     if extra:
         data.update(extra)
-    return _replace_text(path, json.dumps(data, indent=2, default=_jsonable) + "\n")
+    return replace_text(path, json.dumps(data, indent=2, default=_jsonable) + "\n")
 
 
 def write_figures(episode: Episode, recorder, out: Path) -> list[Path]:
