@@ -100,7 +100,7 @@ def test_only_an_active_source_items_weights_change_and_only_while_the_gate_is_o
 
 
 def traced_hebbian_net(backend: str, sources: list[str] | None = None, post_threshold: float = 0.0,
-                       targets: list[str] | None = None) -> Network:
+                       targets: list[str] | dict[str, list[str]] | None = None) -> Network:
     memory = {"tau_build": 0.1, "tau_decay": 1.0, "amplitude": 0.0, "threshold": 0.5}
     learn = {"rate": 2.0, "decay": 1.0, "gate": "G.ok", "bounds": [0.0, 2.0], "traces": "both",
              "post_threshold": post_threshold}
@@ -145,6 +145,11 @@ def test_a_rule_on_traces_learns_who_was_active_together_when_the_gate_opens_lat
     above.set_stimulus("G", "ok", 8.0)
     above.run(3.0)
     assert above.table("pre->post")[0, 0] == 0.2 and above.table("pre->post")[1, 0] > 1.8
+    onto_p = traced_hebbian_net(backend, targets={"x": ["p"]})   # the pair x -> q does not learn
+    onto_p.state_m[:] = net.state_m
+    onto_p.set_stimulus("G", "ok", 8.0)
+    onto_p.run(3.0)
+    assert onto_p.table("pre->post")[1, 0] == 0.2 and onto_p.table("pre->post")[0, 0] == pytest.approx(w[0, 0], abs=1e-4)
 
 
 @pytest.mark.parametrize("backend", BACKENDS)
@@ -334,6 +339,11 @@ def test_learned_weights_round_trip_survive_reset_and_parameter_changes_and_forg
     ({"learn": {"rate": 1.0, "sources": ["z"]}}, "learn.sources", "unknown item"),
     ({"learn": {"rate": 1.0, "sources": "x"}}, "learn.sources", "a list"),
     ({"learn": {"rate": 1.0, "targets": ["z"]}}, "learn.targets", "unknown item"),
+    ({"learn": {"rate": 1.0, "targets": 3}}, "learn.targets", "or a mapping of source items"),
+    ({"learn": {"rate": 1.0, "targets": {"z": ["p"]}}}, "learn.targets", "unknown item 'z' of source field"),
+    ({"learn": {"rate": 1.0, "targets": {"x": ["z"]}}}, "learn.targets.x", "unknown item 'z' of target field"),
+    ({"learn": {"rate": 1.0, "targets": {"x": "p"}}}, "learn.targets.x", "a list of target items"),
+    ({"learn": {"rate": 1.0, "targets": {"x": None}}}, "learn.targets.x", "a list of target items"),
     ({"learn": {"rate": 1.0, "post_threshold": -0.1}}, "learn.post_threshold", ">= 0"),
     ({"learn": {"rate": 1.0, "keep": 1.5}}, "learn.keep", "from 0 to 1"),
 ])
@@ -445,6 +455,8 @@ def test_weights_of_items_that_do_not_learn_stay_at_their_prior_through_a_file(b
     with pytest.raises(FieldError) as err:
         onto_p.set_table("pre->post", {"p": {"x": 1.0}, "q": {"x": 0.7}})
     assert err.value.key == "table.q.x" and "does not learn" in err.value.message
+    pairs = traced_hebbian_net(backend, targets={"x": ["p", "r"]})
+    assert pairs.learned_tables() == {"pre->post": {"p": {"x": 0.2}, "r": {"x": 0.2}}}
     net.set_table("pre->post", {"p": {"x": 1.5}})     # x -> q, r left out: 0; y's weights left out: their prior
     assert np.array_equal(net.table("pre->post"), [[1.5, -1.0], [0.0, -1.0], [0.0, -1.0]])
     net.set_table("pre->post", {"p": {"x": 1.0, "y": -1.0}})   # y's prior given as it is: accepted

@@ -101,12 +101,17 @@ def test_the_seeds_experiments_keep_their_decisions_while_learning_from_the_defa
 
 
 def test_only_what_a_grip_means_learns():
-    """The weights from the grip items onto the chains a grip begins; the gestures' chains keep their own cues."""
+    """The weights from each grip item onto the chains a grip on the same object begins; a grip on the bottle
+    never comes to mean something about the glass, and the gestures' chains keep their own cues."""
     cog = Cognition(overrides={"learning.rate": LEARNING_RATE})
     tables = cog.learned_weights()
     assert list(tables) == ["OL->ASL"]
-    assert set(tables["OL->ASL"]) == set(task.GRASP_CHAINS) and "Request-object-with-open-hand" not in task.GRASP_CHAINS
-    assert {g for row in tables["OL->ASL"].values() for g in row} == set(task.OL_GRIP_ITEMS)
+    learning = {(g, chain) for chain, row in tables["OL->ASL"].items() for g in row}
+    assert learning == {(g, chain) for g, chains in task.GRIP_CHAINS.items() for chain in chains}
+    assert ("grasp_ag_bottle", "Reach-grasp-SG-open-bottle-to-pour") in learning
+    assert ("grasp_ag_bottle", "Reach-grasp-AG-glass-to-hand-over") not in learning
+    assert ("grasp_sg_glass", "Reach-grasp-AG-open-bottle-to-hand-over") not in learning
+    assert not any(chain.startswith(("Request", "Point")) for _, chain in learning)
 
 
 @pytest.mark.parametrize("content, key, words", [

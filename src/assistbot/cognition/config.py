@@ -305,7 +305,7 @@ class CognitionConfig:
         ol_asl["learn"] = {"rate": float(learn["rate"]), "decay": float(learn["decay"]), "gate": "SUCCESS.success",
                            "bounds": [0.0, float(learn["highest"])], "keep": float(learn["keep"]), "traces": "post",
                            "pre": "GRIP",
-                           "sources": list(task.OL_GRIP_ITEMS), "targets": list(task.GRASP_CHAINS),
+                           "targets": {grip: list(chains) for grip, chains in task.GRIP_CHAINS.items()},
                            "post_threshold": float(learn["post_threshold"])}
 
     def copy(self) -> "CognitionConfig":

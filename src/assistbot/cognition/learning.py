@@ -1,8 +1,8 @@
 """Learning from the user, across episodes: the grip-to-chain weights in a file.
 
 The seed assumes which grip means which goal (above grip: hand over; side grip: pour or turn) and
-proposes to learn it from the user. Here the OL -> ASL weights from the grip items (`task.OL_GRIP_ITEMS`)
-onto the chains a grip begins (`task.GRASP_CHAINS`) learn by the field library's gated Hebbian rule
+proposes to learn it from the user. Here the OL -> ASL weights from each grip item onto the chains a grip
+on the same object begins (`task.GRIP_CHAINS`) learn by the field library's gated Hebbian rule
 (`CognitionConfig`'s ``learning`` block): while SUCCESS is up (an action of the robot's finished as it
 should, or a sub-goal was reached), the grip in hand (GRIP, a memory of the last grip seen) moves its
 weight toward the chain ASL read last (ASL's memory trace) and away from a chain read before and given

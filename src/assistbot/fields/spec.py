@@ -302,7 +302,8 @@ class LearnSpec:
       that holds the source's last act through what follows it (the coupling still drives its target from
       its source);
     - ``sources``, ``targets``: the source and target items whose weights learn (default all); the others
-      keep their prior, and only the learning weights are held to ``bounds``;
+      keep their prior, and only the learning weights are held to ``bounds``. ``targets`` may instead map
+      each learning source item to its own targets (``{x: [p, q], y: [r]}``): only those pairs learn;
     - ``post_threshold``: only the weights onto target items whose c_m exceeds it change (default 0: with
       traces, a target never active keeps its weights; one that was active and lost to another relaxes
       toward what is left of its trace).
@@ -319,7 +320,7 @@ class LearnSpec:
     traces: str = "none"
     pre: str | None = None
     sources: list[str] | None = None
-    targets: list[str] | None = None
+    targets: list[str] | dict[str, list[str]] | None = None
     post_threshold: float = 0.0
     keep: float = 0.0
 
@@ -340,18 +341,13 @@ class LearnSpec:
         self.keep = _number(where, "learn.keep", self.keep, nonneg=True)
         if self.keep > 1.0:
             raise FieldError(where, "learn.keep", f"is a share of the prior, from 0 to 1; got {self.keep:g}")
-        for key, end in (("sources", source), ("targets", target)):
-            listed = getattr(self, key)
-            if listed is None:
-                continue
-            if isinstance(listed, str) or not isinstance(listed, (list, tuple)):
-                raise FieldError(where, f"learn.{key}", f"must be a list of {key[:-1]} items, got {listed!r}")
-            setattr(self, key, list(listed))
-            if end is not None:
-                for item in listed:
-                    if item not in end.items:
-                        raise FieldError(where, f"learn.{key}", f"unknown item {item!r} of {key[:-1]} field '{end.name}'; "
-                                                                f"known: {', '.join(end.items)}")
+        if self.sources is not None:
+            self.sources = _item_list(where, "sources", self.sources, source)
+        if isinstance(self.targets, Mapping):
+            self.targets = {s: _item_list(where, f"targets.{s}", t, target) for s, t in self.targets.items()}
+            _item_list(where, "targets", list(self.targets), source, kind="source")
+        elif self.targets is not None:
+            self.targets = _item_list(where, "targets", self.targets, target)
         pre = source
         if self.pre is not None:
             if not isinstance(self.pre, str) or self.pre not in fields_by_name:
@@ -371,15 +367,34 @@ class LearnSpec:
 
     def learns_from(self, source_item: str) -> bool:
         """Whether weights from this source item learn (onto the learning targets)."""
-        return self.sources is None or source_item in self.sources
+        return ((self.sources is None or source_item in self.sources)
+                and (not isinstance(self.targets, dict) or source_item in self.targets))
 
     def learns(self, source_item: str, target_item: str) -> bool:
         """Whether the weight from this source item onto this target item changes."""
-        return self.learns_from(source_item) and (self.targets is None or target_item in self.targets)
+        if not self.learns_from(source_item):
+            return False
+        if isinstance(self.targets, dict):
+            return target_item in self.targets[source_item]
+        return self.targets is None or target_item in self.targets
 
     @classmethod
     def from_dict(cls, where: str, d: Any) -> "LearnSpec":
         return _nested(cls, where, "learn", LEARN_KEYS, d)
+
+
+def _item_list(where: str, key: str, listed: Any, end: "FieldSpec | None", kind: str = "") -> list[str]:
+    """A learning rule's list of items, each an item of ``end`` (the source or target field)."""
+    kind = kind or key.split(".")[0][:-1]
+    if isinstance(listed, str) or not isinstance(listed, (list, tuple)):
+        also = ", or a mapping of source items to lists of target items" if key == "targets" else ""
+        raise FieldError(where, f"learn.{key}", f"must be a list of {kind} items{also}, got {listed!r}")
+    if end is not None:
+        for item in listed:
+            if item not in end.items:
+                raise FieldError(where, f"learn.{key}", f"unknown item {item!r} of {kind} field '{end.name}'; "
+                                                        f"known: {', '.join(end.items)}")
+    return list(listed)
 
 
 def gate_item(where: str, ref: Any, fields_by_name: Mapping[str, "FieldSpec"]) -> tuple[str, str]:

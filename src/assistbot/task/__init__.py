@@ -18,7 +18,7 @@ from assistbot.task.drinking import (
     FAILURE_OF,
     FALLS,
     FINAL_GOAL,
-    GRASP_CHAINS,
+    GRIP_CHAINS,
     GRIP_PRIORS,
     HAND_POSTURES,
     HOLDERS,

@@ -168,8 +168,11 @@ ASL_CHAINS: tuple[Chain, ...] = (
     Chain("Point-to-glass", {"point_glass": 3.8}, {}, {}),
 )
 ASL_ITEMS: tuple[str, ...] = tuple(c.name for c in ASL_CHAINS)
-#: the chains a grip on an object begins (what a grip can mean; the gestures are read from the gesture alone)
-GRASP_CHAINS: tuple[str, ...] = tuple(c.name for c in ASL_CHAINS if any(p in OL_GRIP_ITEMS for p in c.primitives))
+#: what a grip can mean: for each grip item, the chains a grip on the same object begins (a grip on the bottle
+#: says nothing of the glass; the gestures are read from the gesture alone)
+GRIP_CHAINS: dict[str, tuple[str, ...]] = {
+    f"{grip}_{obj}": tuple(c.name for c in ASL_CHAINS if any(f"{g}_{o}" in c.primitives for g, o in GRIP_PRIORS if o == obj))
+    for grip, obj in GRIP_PRIORS}
 
 # ---------------------------------------------------------------------------------------------
 # Intention layer (IL)
