@@ -75,3 +75,20 @@ def test_compiled_ik_step_agrees_with_the_numpy_reference():
         q_cmd = rng.uniform(-1.9, 1.9, size=7)          # a command within the joint limits
         out, big = bounded(q, q_cmd, lo, hi, 0.024)
         assert np.all(np.abs(out - q_cmd) <= 0.024 + 1e-12) and big == pytest.approx(np.abs(out - q_cmd).max())
+
+
+def test_rehearsing_motions_predicts_the_reach_and_changes_nothing():
+    world = build_world(PAPER_ARRANGEMENTS["fig3"], seed=0)
+    arm = HumanArm(world, speed=0.3)
+    q0, ctrl0, goal0 = arm.q.copy(), world.data.ctrl.copy(), arm.p_goal.copy()
+    near = ((-0.25, -0.10, 0.95), grip_orientation("ag", (-0.25, -0.10, 0.95)), None, 0.03)
+    far = ((0.40, 0.40, 1.30), grip_orientation("ag", (0.40, 0.40, 1.30)), None, 0.03)
+    assert arm.rehearse([near, near]) == 2
+    assert arm.rehearse([near, far, near]) == 1
+    assert np.array_equal(arm.q, q0) and np.array_equal(world.data.ctrl, ctrl0) and np.array_equal(arm.p_goal, goal0)
+    assert arm.segment is None and not arm.clamped
+    # what was rehearsed is what the arm then does
+    t = 0.0
+    arm.move_to(*near[:2], t=t)
+    t = _run(world, arm, t, 3.0)
+    assert np.linalg.norm(arm.fk(arm.q)[0] - np.array(near[0])) < 0.03

@@ -71,3 +71,15 @@ def test_the_robot_holding_the_bottle_out_again_is_seen_again():
     hc.run(6.0, robot=lambda t: clock.update(t=t))
     saw = [round(e.t, 1) for e in hc.events("saw") if e.what == "robot_offers:bottle"]
     assert len(saw) == 2 and saw[1] >= 3.0, saw
+
+
+@pytest.mark.parametrize("convention, grip", [("seed", "sg"), ("swapped", "ag")])
+def test_an_active_person_pours_with_the_grip_of_their_convention(convention, grip):
+    from assistbot.human.script import parse_human
+
+    w = build_world(Arrangement.from_mapping({"bottle": {"zone": "HWS", "state": "open"},
+                                              "glass": {"zone": "HWS", "state": "empty"}}), seed=0)
+    hc = HumanController(w, config=parse_human({"profile": "active", "grip_convention": convention}))
+    hc.run(1.0)
+    start = hc.events("start")[0]
+    assert start.what == "pour" and start.detail["grip"] == grip

@@ -196,3 +196,21 @@ def test_the_partners_command_writes_a_contact_sheet_and_their_attributes(tmp_pa
     assert float(rows[0]["upper_arm"]) == sample_partner(40).body.upper_arm
     assert main(["partners", "--n", "0", "--out", str(tmp_path)]) == 2
     assert "--n" in capsys.readouterr().err
+
+
+def test_a_grip_convention_is_a_scenario_key_and_a_partner_attribute_and_mistakes_name_the_key():
+    """The swapped convention hands over from the side and pours from above; the seed's, the other way round."""
+    seed = parse_human({"profile": "active"}).profile_params()
+    assert (seed.grip, seed.pour_grip) == ("ag", "sg")
+    swapped = parse_human({"profile": "active", "grip_convention": "swapped"}).profile_params()
+    assert (swapped.grip, swapped.pour_grip) == ("sg", "ag")
+    by_partner = parse_human({"profile": "passive", "partner": {"seed": 3, "grip_convention": "swapped"}})
+    assert by_partner.partner.body == sample_partner(3).body
+    assert (by_partner.profile_params().grip, by_partner.profile_params().pour_grip) == ("sg", "ag")
+    # an explicit hand-over grip still overrides what the convention sets
+    assert parse_human({"grip_convention": "swapped", "grip": "ag"}).profile_params().grip == "ag"
+    for bad, key in (({"grip_convention": "mirror"}, "human.grip_convention"),
+                     ({"partner": {"grip_convention": 1}}, "human.partner.grip_convention")):
+        with pytest.raises(UserError) as e:
+            parse_human(bad, "s.yaml")
+        assert e.value.key == key and "seed, swapped" in e.value.message, (bad, e.value)

@@ -12,8 +12,9 @@ Layers (fields of `assistbot.fields`, items from `assistbot.task`):
 - IL: the partner's intention (from ASL + CSGL + OML);
 - AFL: the memory of the robot's own actions that failed (the executor's reports), which keeps a
   failed action habituated in AEL while it stands;
-- SUCCESS: up for a moment when an action of the robot's finished as it should or a sub-goal was
-  reached; with ``learning.rate`` > 0 it gates the learning of the grip-to-chain weights (OL -> ASL);
+- SUCCESS: up for a moment when an action of the robot's finished as it should, a sub-goal was
+  reached or the partner was seen doing what the inferred intention predicts; with ``learning.rate`` > 0
+  it gates the learning of the grip-to-chain weights (OL -> ASL);
 - AML: mismatch of the intention with what is possible (IL + ASL/OML), and of what the robot did
   with what came of it: a failure reported while AFL remembers one of the same action;
 - AEL: the complementary action (IL, OML, CSGL, AML, INI, URGE), one winner that
@@ -127,6 +128,7 @@ class Cognition:
         self._cleared: dict[str, float] = {}    # motion action -> time its failure memory was cleared
         self._succeeded_at = -math.inf          # when an action last finished as it should or a sub-goal was reached
         self._reached: set[str] = set()         # the sub-goals CSGL_past holds (a new one is a success)
+        self._confirmed: set[str] = set()       # the intentions IL holds while OL sees their act (a new one too)
         self._pending: list[Said] = []
         self._new = False
         self._released: str | None = None
@@ -244,12 +246,15 @@ class Cognition:
 
     def _apply_success_input(self) -> None:
         """SUCCESS up for ``success_seconds`` after an action of the robot's finished as it should (the executor's
-        report) or CSGL_past newly holds a sub-goal: the gate of learning from the user."""
+        report), CSGL_past newly holds a sub-goal, or the partner is seen doing what the intention IL holds
+        predicts (its act in OL, `task.INTENTION_ACTS`): the gate of learning from the user."""
         st = self.config.data["stimulus"]
         reached = set(self.peaks("CSGL_past"))
-        if reached - self._reached:
+        seen = set(self.peaks("OL"))
+        confirmed = {i for i in self.peaks("IL") if seen.intersection(task.INTENTION_ACTS.get(i, ()))}
+        if reached - self._reached or confirmed - self._confirmed:
             self._succeeded_at = self.net.t
-        self._reached = reached
+        self._reached, self._confirmed = reached, confirmed
         on = self.net.t - self._succeeded_at < float(st["success_seconds"])
         self.net.set_stimulus("SUCCESS", "success", float(st["success_pulse"]) if on else 0.0)
 

@@ -149,7 +149,8 @@ def default_config() -> dict[str, Any]:
             "failure_report": 5.0, "report_seconds": 3.0,
             "failure_pulse": 2.0, "pulse_seconds": 1.5,
             "success_clears": -20.0,  # into AFL at an action that finished (for report_seconds): its failure is past
-            # into SUCCESS when a motion action finished as it should or a sub-goal was newly reached
+            # into SUCCESS when a motion action finished as it should, a sub-goal was newly reached or the partner
+            # was seen doing what the inferred intention predicts
             "success_pulse": 5.0, "success_seconds": 1.5,
             "forget_after": 90.0,     # s after its last failure an action's memory is let go
             # an object seen lying on its side, into AML at its fall once seen so for fallen_after s (a
@@ -289,14 +290,17 @@ class CognitionConfig:
         decisions are the priors' until a weight has moved."""
         d = self.data
         learn = d["learning"]
-        # GRIP: the grip in hand, a memory of the last grip seen, held through what is done with it (a hold-out,
-        # a pour, a rest while the robot takes it) and ended by a new grip or a new act (reach, pointing, request)
-        # (a memory field as OML is: its own wide spacing and a little global inhibition keep a peak from spreading)
+        # GRIP: the grip in hand, a memory of the grip seen as an object was taken, held through what is done with
+        # it (a hold-out, a pour, a rest while the robot takes it) and ended by another grip on the same object or
+        # a new act (reach, pointing, request); a grip read on the other object meanwhile (the hand with the bottle
+        # beside the glass) leaves it be (a memory field as OML is: its own wide spacing and a little global
+        # inhibition keep a peak from spreading)
         fields["GRIP"] = {"items": list(task.OL_GRIP_ITEMS), **_field(0.1, -3.0, 4.0, 0.2, input_sigma=1.0), "spacing": 25}
         hold, end = float(learn["grip_hold"]), float(learn["grip_end"])
         new_acts = [i for i in task.OL_ITEMS if i.startswith(("reach_", "point_")) or i == "open_hand_request"]
+        same_object = {f"{g}_{o}": [f"{h}_{p}" for h, p in task.GRIP_PRIORS if p == o and h != g] for g, o in task.GRIP_PRIORS}
         couplings.append({"name": "OL->GRIP", "source": "OL", "target": "GRIP", "k": 1.0,
-                          "table": {g: {**{o: end for o in task.OL_GRIP_ITEMS if o != g}, **{a: end for a in new_acts}, g: hold}
+                          "table": {g: {**{o: end for o in same_object[g]}, **{a: end for a in new_acts}, g: hold}
                                     for g in task.OL_GRIP_ITEMS}})
         # ASL's trace, for the learning rule only: amplitude 0 keeps it out of the field's dynamics
         fields["ASL"]["memory"] = {"tau_build": float(learn["trace_build"]), "tau_decay": float(learn["reading_memory"]),

@@ -42,6 +42,7 @@ MAX_JOINT_SPEED = 1.2       # rad/s, any arm joint
 MIN_DURATION = 0.4          # s, shortest reach
 ANGULAR_SPEED = 1.0         # rad/s mean hand rotation speed of a reach
 SETTLED_STEP = 1e-6         # rad: an IK step below this at rest ends the IK until the next motion
+SERVO_LAG = 0.25            # s: the hand reaches its commanded pose about this long after the command
 
 
 def _rot(z_axis, y_axis) -> np.ndarray:
@@ -286,6 +287,28 @@ class HumanArm:
         self.p_goal, self.R_goal = p1, R1
         return float(t0 + duration - t)
 
+    def rehearse(self, moves, t: float = 0.0) -> int:
+        """How many of ``moves`` ((p, R, speed, tol) one after the other, as `move_to` takes them) the arm would
+        complete from its present posture: the same segments and IK tracking as the control ticks, with
+        nothing commanded (a person's sense of their own arm). A move is complete when the commanded hand is
+        within tol (m) of its goal at most 1.5 s after the segment's time is up."""
+        saved = (self.q.copy(), self.segment, self.segments, self._settled, self.p_goal, self.R_goal, len(self.clamped))
+        try:
+            for n, (p, R, speed, tol) in enumerate(moves):
+                t_end = t + self.move_to(p, R, t=t, speed=speed) + 1.5
+                arrived = None       # when the command got there: the hand follows it within SERVO_LAG
+                while arrived is None or t < arrived + SERVO_LAG:
+                    if t >= t_end:
+                        return n
+                    self.q = self._follow(t)[0]
+                    t += self.dt
+                    if arrived is None and self.segment.done(t) and float(np.linalg.norm(self.fk(self.q)[0] - self.p_goal)) < tol:
+                        arrived = t
+            return len(moves)
+        finally:
+            self.q, self.segment, self.segments, self._settled, self.p_goal, self.R_goal, n_clamped = saved
+            del self.clamped[n_clamped:]
+
     def arrived(self, t: float, tol: float = 0.03) -> bool:
         """The motion's time is up and the measured hand is within tol (m) of the goal."""
         if self.segment is not None and not self.segment.done(t):
@@ -311,6 +334,14 @@ class HumanArm:
         moving = self.segment is not None and not self.segment.done(t)
         if not moving and self._settled and self.tremor_amplitude == 0.0:
             return  # holding still at the goal: the servo targets stand
+        q, biggest = self._follow(t, iterations)
+        self.q = q
+        self._settled = not moving and biggest < SETTLED_STEP
+        self.world.data.ctrl[self._act] = self.q
+
+    def _follow(self, t: float, iterations: int = 1) -> tuple[np.ndarray, float]:
+        """The commanded angles of the next tick: IK toward the segment's pose at t + dt from the present
+        command, each joint moved at most its top speed; and the largest step taken."""
         if self.segment is not None:
             seg = next((g for g in self.segments if not g.done(t + self.dt)), self.segment)
             p_t, R_t = seg.at(t + self.dt)
@@ -319,7 +350,6 @@ class HumanArm:
         if self.tremor_amplitude > 0.0:
             p_t = p_t + self.tremor(t + self.dt)
         q = self.q
-        max_step = MAX_JOINT_SPEED * self.dt
         m, d = self.m, self.d
         for _ in range(iterations):
             d.qpos[:] = q
@@ -329,6 +359,4 @@ class HumanArm:
             # damped least squares with a weak pull toward the rest posture in the null space (dls.py)
             q = dls_step(p_t, R_t, d.site_xpos[self._site], d.site_xmat[self._site].reshape(3, 3),
                          self._jacp, self._jacr, q, self.q_rest, self._lo, self._hi)
-        self.q, biggest = bounded(q, self.q, self._lo, self._hi, max_step)
-        self._settled = not moving and biggest < SETTLED_STEP
-        self.world.data.ctrl[self._act] = self.q
+        return bounded(q, self.q, self._lo, self._hi, MAX_JOINT_SPEED * self.dt)

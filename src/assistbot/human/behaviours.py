@@ -61,6 +61,7 @@ UNDER_ROBOT_X_MAX = -0.045
 #: a resting place of the hand near the body
 REST = np.array([-0.34, -0.17, 0.86])
 LIFT = 0.07                       # m lifted after a grasp
+MOVE_TOL = 0.03                   # m: a reach has arrived when the hand is this near its goal
 #: m that an object carried in the hand keeps from the other objects standing on the table (above, around)
 CARRY_CLEARANCE = 0.03
 #: an object held beyond this table x (toward the robot) is put down on the person's own side instead
@@ -87,6 +88,13 @@ POUR_TIMEOUT = 6.0
 #: so far (the fraction of POUR_TILT) that the liquid reaches the mouth: further off, the stream misses the glass
 MOUTH_TOLERANCE = 0.025
 POURS_FROM = 0.6
+#: the steps (fractions of POUR_TILT) in which the bottle is tilted, at this hand speed (m/s), each reached
+#: within this distance (m)
+TILT_STEPS = np.linspace(0.2, 1.0, 5)
+POUR_SPEED = 0.08
+POUR_TOL = 0.04
+#: m between the glass and the bottle brought beside it to pour
+POUR_GAP = 0.02
 
 
 @dataclass
@@ -138,24 +146,33 @@ def _wait_until(c, cond: Callable[[], bool], timeout: float) -> Generator[None, 
     return True
 
 
-def _move(c, p, R=None, speed: float | None = None, tol: float = 0.03,
+def _move(c, p, R=None, speed: float | None = None, tol: float = MOVE_TOL,
           stop: Callable[[], bool] | None = None) -> Generator[None, None, bool]:
     """Reach to p (with rotation R); True when the hand got there (or `stop()` became true on the way:
     the hand then stays where it is).  An object in the hand is carried over, not through, the objects
     standing near the way (`_carry_height`): the hand first rises, crosses, then comes down."""
-    high = _carry_height(c, p)
-    if high is not None:
-        hand = c.arm.hand_pose()[0]
-        if hand[2] < high - 0.005:
-            if not (yield from _move_straight(c, np.array([hand[0], hand[1], high]), R, speed, 0.03, stop)):
-                return False
-        if p[2] < high - 0.005:
-            if not (yield from _move_straight(c, np.array([p[0], p[1], high]), R, speed, 0.03, stop)):
-                return False
+    for over in _carry_path(c, p):
+        if not (yield from _move_straight(c, over, R, speed, MOVE_TOL, stop)):
+            return False
     return (yield from _move_straight(c, p, R, speed, tol, stop))
 
 
-def _move_straight(c, p, R=None, speed: float | None = None, tol: float = 0.03,
+def _carry_path(c, p) -> list[np.ndarray]:
+    """The points the hand passes on its way to p, carrying what it holds over what stands in the way: up to
+    the carry height where it is, across at that height; none when nothing is in the way."""
+    high = _carry_height(c, p)
+    if high is None:
+        return []
+    hand = c.arm.hand_pose()[0]
+    path = []
+    if hand[2] < high - 0.005:
+        path.append(np.array([hand[0], hand[1], high]))
+    if p[2] < high - 0.005:
+        path.append(np.array([p[0], p[1], high]))
+    return path
+
+
+def _move_straight(c, p, R=None, speed: float | None = None, tol: float = MOVE_TOL,
                    stop: Callable[[], bool] | None = None) -> Generator[None, None, bool]:
     if c.profile.hesitation > 0:
         yield from _wait(c, c.profile.hesitation)
@@ -667,10 +684,76 @@ def _turning(a: np.ndarray, b: np.ndarray) -> np.ndarray:
     return _rodrigues(axis, float(np.arctan2(s, float(np.dot(a, b)))))
 
 
-def pour(c, timeout: float = POUR_TIMEOUT) -> Gen:
-    """Fill the upright glass on this side from the open bottle: a side grip on the bottle, lifted beside
-    the glass toward the palm, then tilted toward the palm while its mouth comes over the rim, held until
-    the glass looks full (a person's eyes: WorldState), tilted back and put back where it stood."""
+class _PourWay:
+    """A way to pour into the glass whose rim centre is ``rim``: the bottle, held with its mouth at
+    ``mouth_in_hand`` (hand frame), stands upright beside the glass on the side away from ``toward`` (the
+    horizontal direction its top tips to), then tips toward the glass by up to POUR_TILT about
+    z x toward, its mouth coming down over the rim."""
+
+    def __init__(self, rim: np.ndarray, mouth_in_hand: np.ndarray, gap: float) -> None:
+        self.rim, self.mouth_in_hand = rim, mouth_in_hand
+        self.beside = catalogue.radius("glass") + catalogue.radius("bottle") + gap
+
+    def aim(self, toward, R_hand: np.ndarray, rise: float | None = None) -> None:
+        """Tip toward ``toward`` from the hand orientation R_hand; the mouth starts ``rise`` above its pouring
+        height (default: the bottle's height, its base above the rim)."""
+        t = np.array([toward[0], toward[1], 0.0])
+        self.toward = t / max(float(np.linalg.norm(t)), 1e-9)
+        self.tip = np.cross([0.0, 0.0, 1.0], self.toward)   # tilting about this turns the bottle's top toward `toward`
+        self.R_hand = R_hand
+        self.rise = catalogue.height("bottle") if rise is None else rise
+
+    def mouth_at(self, f: float) -> np.ndarray:
+        return (self.rim - self.toward * self.beside * (1.0 - f)
+                + np.array([0.0, 0.0, MOUTH_ABOVE_RIM + (1.0 - f) * self.rise]))
+
+    def pose(self, f: float) -> tuple[np.ndarray, np.ndarray]:
+        """Fraction f of the pour: 0 upright beside the glass, 1 fully tilted."""
+        Rh = _rodrigues(self.tip, f * POUR_TILT) @ self.R_hand
+        return self.mouth_at(f) - Rh @ self.mouth_in_hand, Rh
+
+    def station(self) -> np.ndarray:
+        """Where the bottle's base stands (x, y) before it tips."""
+        return (self.rim - self.toward * self.beside)[:2]
+
+
+#: the ways around the glass a person holding the bottle from above considers (directions, evenly spaced)
+WAYS_FROM_ABOVE = 12
+
+
+def _way_from_above(c, way: _PourWay, base_xy: np.ndarray) -> None:
+    """Aims ``way`` for a bottle held from above. Such a hand cannot roll the bottle far every way (the forearm
+    turns about 85 degrees each way, the wrist less, and how far depends on where the arm is): the person tries
+    the ways around the glass with a sense of their own arm (`HumanArm.rehearse`) and takes the one that tips the
+    bottle furthest, the nearest to where it stood among equals. The bottle need only clear the table before it
+    tips (its base rises as it turns), which keeps the hand low enough to hold it from above."""
+    xmax, ymax, inner = layout.standing_limits(catalogue.radius("bottle"))
+    rise = catalogue.height("bottle") - catalogue.height("glass") + CARRY_CLEARANCE
+    best = None
+    for a in np.linspace(0.0, 2.0 * np.pi, WAYS_FROM_ABOVE, endpoint=False):
+        toward = (np.cos(a), np.sin(a))
+        way.aim(toward, np.eye(3), rise)
+        x, y = way.station()
+        if not (-xmax <= x <= -inner and abs(y) <= ymax):
+            continue
+        R = grip_orientation("ag", [x, y, way.rim[2]], c.arm.shoulder_xy)
+        way.aim(toward, R, rise)
+        start, R_start = way.pose(0.0)
+        carry = [(over, R_start, None, MOVE_TOL) for over in _carry_path(c, start)] + [(start, R_start, None, MOVE_TOL)]
+        tilts = [(*way.pose(float(f)), POUR_SPEED, POUR_TOL) for f in TILT_STEPS]
+        key = (c.arm.rehearse(carry + tilts) - len(carry), -float(np.linalg.norm(way.station() - base_xy)))
+        if best is None or key > best[0]:
+            best = (key, toward, R)
+    if best is None:   # no place beside the glass on this side of the table: tip it toward the person
+        best = (None, (-1.0, 0.0), grip_orientation("ag", way.rim, c.arm.shoulder_xy))
+    way.aim(best[1], best[2], rise)
+
+
+def pour(c, timeout: float = POUR_TIMEOUT, grip: str = "sg") -> Gen:
+    """Fill the upright glass on this side from the open bottle: a grip on the bottle (side or above), the bottle
+    lifted beside the glass, then tilted toward it while its mouth comes over the rim, held until the glass looks
+    full (a person's eyes: WorldState), tilted back and put back where it stood. From the side the bottle tips
+    toward the palm; from above, the way around the glass that the arm can tip it furthest (`_way_from_above`)."""
     w = c.world
     if w.data.eq_active[w.eq_stopper]:
         return False, "the bottle is closed"
@@ -678,9 +761,10 @@ def pour(c, timeout: float = POUR_TIMEOUT) -> Gen:
         return False, "the glass is not upright"
     base0 = _center_base(c, "bottle")[:2].copy()
     if w.human_holding() != "bottle":
-        ok, why = yield from grasp(c, "bottle", "sg")
+        ok, why = yield from grasp(c, "bottle", grip)
         if not ok:
             return False, why
+
     def mouth_now() -> np.ndarray:
         """Where the bottle's mouth is (world), as the person sees it."""
         Rb = w.data.xmat[w.body_id["bottle"]].reshape(3, 3)
@@ -688,39 +772,41 @@ def pour(c, timeout: float = POUR_TIMEOUT) -> Gen:
 
     hand, R0 = c.arm.hand_pose()
     mouth_in_hand = R0.T @ (mouth_now() - hand)
-    palm = R0[:, 1].copy()
-    palm[2] = 0.0
-    palm /= max(float(np.linalg.norm(palm)), 1e-9)
-    tip = np.cross([0.0, 0.0, 1.0], palm)          # tilting about this turns the bottle's top toward the palm
     rim = _center_base(c, "glass") + np.array([0.0, 0.0, catalogue.height("glass")])
-    beside = catalogue.radius("glass") + catalogue.radius("bottle") + 0.02
+    if grip == "sg":
+        # lifted with its base above the rim, the bottle tips toward the palm
+        way = _PourWay(rim, mouth_in_hand, POUR_GAP)
+        way.aim(R0[:, 1], R0)
+    else:
+        # from above, brought beside the glass lower (its base below the rim), so further off
+        way = _PourWay(rim, mouth_in_hand, 2 * POUR_GAP)
+        _way_from_above(c, way, base0)
+    return (yield from _tip_into_glass(c, way, mouth_now, base0, timeout))
 
-    def mouth_at(f: float) -> np.ndarray:
-        return rim - palm * beside * (1.0 - f) + np.array([0.0, 0.0, MOUTH_ABOVE_RIM + (1.0 - f) * catalogue.height("bottle")])
 
-    def pose(f: float):
-        """Fraction f of the pour: 0 upright beside the glass with its base above the rim, 1 fully tilted."""
-        Rh = _rodrigues(tip, f * POUR_TILT) @ R0
-        return mouth_at(f) - Rh @ mouth_in_hand, Rh
+def _tip_into_glass(c, way: _PourWay, mouth_now: Callable[[], np.ndarray], base0: np.ndarray, timeout: float) -> Gen:
+    """The bottle in hand brought beside the glass, tipped over it in TILT_STEPS, held until the glass looks
+    full, tipped back and put down at ``base0``."""
+    w = c.world
 
     def mouth_off(f: float) -> float:
         """How far (m, horizontally) the bottle's mouth is from where it should be at fraction f."""
-        return float(np.linalg.norm((mouth_now() - mouth_at(f))[:2]))
+        return float(np.linalg.norm((mouth_now() - way.mouth_at(f))[:2]))
 
-    p, R = pose(0.0)
+    p, R = way.pose(0.0)
     if not (yield from _move(c, p, R)):
         return False, "could not bring the bottle to the glass"
     tilted = 0.0
-    for f in np.linspace(0.2, 1.0, 5):
-        p, R = pose(float(f))
-        reached = yield from _move(c, p, R, speed=0.08, tol=0.04)
+    for f in TILT_STEPS:
+        p, R = way.pose(float(f))
+        reached = yield from _move(c, p, R, speed=POUR_SPEED, tol=POUR_TOL)
         if not reached or (f >= POURS_FROM and mouth_off(float(f)) > MOUTH_TOLERANCE):
             break       # the arm cannot bring the mouth over the rim: tilting on would pour beside the glass
         tilted = float(f)
     full = tilted == 1.0 and (yield from _wait_until(c, lambda: w.state().glass_state == "full", timeout))
     for f in np.linspace(0.75 * tilted, 0.0, 4):
-        p, R = pose(float(f))
-        yield from _move(c, p, R, speed=0.08, tol=0.04)
+        p, R = way.pose(float(f))
+        yield from _move(c, p, R, speed=POUR_SPEED, tol=POUR_TOL)
     yield from put_down(c, "bottle", at=tuple(base0))
     if tilted < 1.0:
         return False, "could not hold the bottle over the glass"

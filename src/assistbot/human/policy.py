@@ -60,7 +60,7 @@ def response_to_tag(c, tag: str) -> list[tuple[str, dict]]:
         # for ever, while the robot waits to give the glass)
         return _put_down_first(holding, what) + [("take_from_robot", {"object": what})]
     if kind == "give_object":
-        return _put_down_first(holding, what) + [("hand_to_robot", {"object": what, "grip": "ag"})]
+        return _put_down_first(holding, what) + [("hand_to_robot", {"object": what, "grip": c.profile.grip})]
     if kind == "drink":
         return _put_down_first(holding, "glass") + [("drink", {})]
     if kind == "put_down_here" and holding in catalogue.TASK_OBJECTS:
@@ -125,7 +125,7 @@ def next_move(c) -> tuple[str, dict] | None:
     if (s["bottle_x"] < 0 and not s["bottle_closed"] and s["glass_x"] < 0 and s["glass_up"] > 0.9 and not s["glass_full"]
             and not st.get("pour")):
         st["pour"] = True
-        return ("pour", {})
+        return ("pour", {"grip": c.profile.pour_grip})
     if s["bottle_x"] < 0 and s["bottle_closed"] and not st.get("bottle"):
         st["bottle"] = True
         grip = c.profile.grip

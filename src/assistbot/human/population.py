@@ -29,7 +29,7 @@ from typing import Any, Mapping
 import numpy as np
 
 from assistbot.errors import UserError
-from assistbot.human.profiles import HOLD_OUT_REGION, Profile
+from assistbot.human.profiles import GRIP_CONVENTIONS, HOLD_OUT_REGION, Profile
 
 #: (5th percentile, 95th percentile) as ratios to the default person, from the ranges in the module docstring
 UPPER_ARM_RANGE = (300 / 350, 395 / 350)
@@ -85,13 +85,16 @@ class Partner:
     hold_out_dx: float = 0.0          # where things are held out: m from the nominal point
     hold_out_dy: float = 0.0
     hold_out_dz: float = 0.0
+    grip_convention: str = "seed"     # what their grips mean (profiles.GRIP_CONVENTIONS)
 
     def profile(self, base: Profile) -> Profile:
-        """``base`` as this person behaves: slower or quicker, with their impairment and hold-out habit."""
+        """``base`` as this person behaves: slower or quicker, with their impairment, hold-out habit and grips."""
+        convention = {"grip_convention": self.grip_convention} if self.grip_convention != "seed" else {}
         return base.with_(speed=base.speed * self.speed_factor, reaction_delay=base.reaction_delay * self.reaction_factor,
                           hesitation=base.hesitation + self.hesitation, drop_chance=self.drop_chance,
                           tremor_amplitude=self.tremor_amplitude, tremor_frequency=self.tremor_frequency,
-                          hold_out_dx=self.hold_out_dx, hold_out_dy=self.hold_out_dy, hold_out_dz=self.hold_out_dz)
+                          hold_out_dx=self.hold_out_dx, hold_out_dy=self.hold_out_dy, hold_out_dz=self.hold_out_dz,
+                          **convention)
 
     def to_dict(self) -> dict:
         """The partner's attributes, flat (as a scenario's ``human.partner`` mapping takes them)."""
@@ -153,6 +156,13 @@ def parse_seed_range(text: str, where: str, key: str) -> range:
     return range(int(a), int(b) + 1)
 
 
+def check_convention(value: Any, where: str, key: str) -> str:
+    """A grip convention's name (profiles.GRIP_CONVENTIONS); anything else is a `UserError` naming ``key``."""
+    if str(value) not in GRIP_CONVENTIONS:
+        raise UserError(where, key, f"unknown grip convention {value!r}; use one of {', '.join(GRIP_CONVENTIONS)}")
+    return str(value)
+
+
 def parse_partner(value: Any, where: str, key: str = "human.partner") -> Partner:
     """A scenario's ``human.partner``: an integer seed of the population, or a mapping of attributes (LIMITS),
     optionally with ``seed`` to start from that sampled person. Mistakes raise `UserError` naming the key."""
@@ -168,11 +178,14 @@ def parse_partner(value: Any, where: str, key: str = "human.partner") -> Partner
         return sample_partner(n)
     if not isinstance(value, Mapping):
         raise UserError(where, key, f"a partner seed (integer >= 0) or a mapping of attributes, got {value!r}")
-    unknown = sorted(set(value) - {"seed", *LIMITS})
+    unknown = sorted(set(value) - {"seed", "grip_convention", *LIMITS})
     if unknown:
-        raise UserError(where, f"{key}.{unknown[0]}", f"unknown attribute; allowed: seed, {', '.join(LIMITS)}")
+        raise UserError(where, f"{key}.{unknown[0]}",
+                        f"unknown attribute; allowed: seed, grip_convention, {', '.join(LIMITS)}")
     base = parse_partner(value["seed"], where, f"{key}.seed") if "seed" in value else Partner()
     attrs = base.to_dict()
+    if "grip_convention" in value:
+        attrs["grip_convention"] = check_convention(value["grip_convention"], where, f"{key}.grip_convention")
     for k in LIMITS:
         if k not in value:
             continue

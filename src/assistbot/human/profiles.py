@@ -6,6 +6,10 @@ from dataclasses import dataclass, replace
 
 #: how far (m) a person's hold-out point may lie from the nominal one, per axis (x, y, z)
 HOLD_OUT_REGION = (0.08, 0.08, 0.06)
+#: what a person's grips mean (their convention): the grip they hand things over with, and the one they pour
+#: with. The seed's partner hands over from above and pours from the side; a person may do it the other way.
+#: (Turning a glass upside down is always done from the side: from above, half a turn is beyond a forearm.)
+GRIP_CONVENTIONS: dict[str, tuple[str, str]] = {"seed": ("ag", "sg"), "swapped": ("sg", "ag")}
 
 
 @dataclass(frozen=True)
@@ -16,6 +20,8 @@ class Profile:
     reaction_delay  s between perceiving a robot act (speech tag or gesture) and responding
     speed           mean hand speed of a reach (m/s); peak speed of a minimum-jerk reach is 1.875x
     grip            preferred grip for hand-overs and hold-outs: "ag" (above) or "sg" (side)
+    grip_convention what the person's grips mean (GRIP_CONVENTIONS): "seed" or "swapped"; setting it sets
+                    ``grip`` to the convention's hand-over grip, and the pour's grip (`pour_grip`)
     wrong_grip      chance (0..1) that the default policy first grasps with the other grip
     hesitation      s of pause before each motion (a person who hesitates)
     hold_out_dx/dy/dz  where this person holds things out and the open hand: m from the nominal
@@ -37,12 +43,20 @@ class Profile:
     drop_chance: float = 0.0
     tremor_amplitude: float = 0.0
     tremor_frequency: float = 6.0
+    grip_convention: str = "seed"
+
+    @property
+    def pour_grip(self) -> str:
+        """The grip this person pours with."""
+        return GRIP_CONVENTIONS[self.grip_convention][1]
 
     @property
     def hold_out_offset(self) -> tuple[float, float, float]:
         return (self.hold_out_dx, self.hold_out_dy, self.hold_out_dz)
 
     def with_(self, **changes) -> "Profile":
+        if "grip_convention" in changes and "grip" not in changes:
+            changes["grip"] = GRIP_CONVENTIONS[changes["grip_convention"]][0]
         return replace(self, **changes)
 
 

@@ -6,7 +6,9 @@ Schema (YAML)::
       profile: active            # active | passive | slow
       reaction_delay: 0.8        # optional overrides of the profile's parameters
       speed: 0.2                 # mean hand speed, m/s
-      grip: ag                   # preferred grip: ag | sg
+      grip: ag                   # preferred grip for hand-overs: ag | sg
+      grip_convention: seed      # what the grips mean: seed (hand over from above, pour from the side) |
+                                 #   swapped (hand over from the side, pour from above); sets grip
       wrong_grip: 0.3            # chance of first trying the other grip (default policy)
       hesitation: 0.0            # s of pause before each motion
       hold_out_dx: 0.0           # where things are held out: m from the nominal point (x, y within
@@ -27,7 +29,7 @@ Schema (YAML)::
 
 Steps: grasp (object, grip, hold_out), hold_out, put_down (object, at), hand_over (object,
 grip), take (object), request (gesture: open_hand), point (object), pull_stopper,
-turn_glass, pour, drink, wait (seconds).  Grips: ag/above, sg/side.  ``after:`` one event:
+turn_glass, pour (grip), drink, wait (seconds).  Grips: ag/above, sg/side.  ``after:`` one event:
 ``robot_said: <tag>``, ``robot_holds: <object>``, ``robot_offers: <object>``,
 ``robot_requests``, ``stopper_removed``, ``glass_full``, ``glass_upright``,
 ``time: <s>``, ``done: <step>``.  Mistakes raise `UserError(where, key, message)`.
@@ -40,7 +42,7 @@ from typing import Any, Mapping
 
 from assistbot import catalogue
 from assistbot.errors import UserError
-from assistbot.human.population import LIMITS as PARTNER_LIMITS, Partner, parse_partner
+from assistbot.human.population import LIMITS as PARTNER_LIMITS, Partner, check_convention, parse_partner
 from assistbot.human.profiles import HOLD_OUT_REGION, PROFILES, Profile
 
 OBJECTS = catalogue.TASK_OBJECTS
@@ -56,14 +58,14 @@ STEPS: dict[str, tuple[str, tuple[str, ...], tuple[str, ...]]] = {
     "point": ("point", ("object",), ("object",)),
     "pull_stopper": ("pull_stopper", (), ()),
     "turn_glass": ("turn_glass", (), ()),
-    "pour": ("pour", (), ()),
+    "pour": ("pour", ("grip",), ()),
     "drink": ("drink", (), ()),
     "wait": ("wait", ("seconds",), ("seconds",)),
 }
 EVENTS_WITH_OBJECT = ("robot_holds", "robot_offers")
 EVENTS_PLAIN = ("robot_requests", "stopper_removed", "glass_full", "glass_upright")
 EVENTS = ("robot_said", *EVENTS_WITH_OBJECT, *EVENTS_PLAIN, "time", "done")
-PARAMS = ("reaction_delay", "speed", "grip", "wrong_grip", "hesitation", "hold_out_dx", "hold_out_dy", "hold_out_dz",
+PARAMS = ("reaction_delay", "speed", "grip", "grip_convention", "wrong_grip", "hesitation", "hold_out_dx", "hold_out_dy", "hold_out_dz",
           "drop_chance", "tremor_amplitude", "tremor_frequency", "partner")
 
 
@@ -87,6 +89,8 @@ class Step:
         a = dict(self.args)
         if self.do in ("grasp", "hand_over"):
             a["grip"] = GRIPS[a.get("grip", profile.grip)]
+        if self.do == "pour":
+            a["grip"] = GRIPS[a.get("grip", profile.pour_grip)]
         if self.do == "request":
             a.pop("gesture", None)
         if "at" in a:
@@ -138,6 +142,8 @@ def check_param(k: str, v: Any, where: str) -> Any:
     a float). The one check for a scenario's ``human:`` block, ``--set human.*`` and a sweep's values."""
     if k == "partner":
         return parse_partner(v, where)
+    if k == "grip_convention":
+        return check_convention(v, where, "human.grip_convention")
     if k == "grip":
         if str(v).lower() not in GRIPS:
             raise UserError(where, "human.grip", f"unknown grip {v!r}; use ag (above) or sg (side)")

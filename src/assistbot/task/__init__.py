@@ -24,6 +24,7 @@ from assistbot.task.drinking import (
     HOLDERS,
     HUMAN_INITIATIVES,
     IL_ITEMS,
+    INTENTION_ACTS,
     INTENTIONS,
     MOTION_ACTIONS,
     OBJECT_STATES,

@@ -181,21 +181,23 @@ GRIP_CHAINS: dict[str, tuple[str, ...]] = {
 
 @dataclass(frozen=True)
 class Intention:
-    """An intention of the human: ``chains`` ASL -> weight, ``subgoals`` CSGL-present -> weight, ``objects`` OML -> weight."""
+    """An intention of the human: ``chains`` ASL -> weight, ``subgoals`` CSGL-present -> weight, ``objects`` OML -> weight;
+    ``acts``: the OL acts in which the partner is seen doing what it predicts (a success of the reading)."""
 
     name: str
     chains: dict[str, float]
     subgoals: dict[str, float] = field(default_factory=dict)
     objects: dict[str, float] = field(default_factory=dict)
+    acts: tuple[str, ...] = ()
 
 
 INTENTIONS: tuple[Intention, ...] = (
     Intention("Remove-stopper",
               {"Reach-grasp-SG-closed-bottle": 1.5, "Reach-grasp-AG-closed-bottle-to-hand-over": 1.5},
               {"Open-bottle": 1.0}),
-    Intention("Pour", {"Reach-grasp-SG-open-bottle-to-pour": 2.5}, {"Fill-glass": 0.5}),
+    Intention("Pour", {"Reach-grasp-SG-open-bottle-to-pour": 2.5}, {"Fill-glass": 0.5}, acts=("pour",)),
     Intention("Turn-glass", {"Reach-grasp-SG-glass-to-turn": 2.5}, {"Turn-glass": 0.5}),
-    Intention("Drink", {"Reach-grasp-SG-full-glass-to-drink": 2.5}, {"Hand-over-full-glass": 0.3}),
+    Intention("Drink", {"Reach-grasp-SG-full-glass-to-drink": 2.5}, {"Hand-over-full-glass": 0.3}, acts=("drink",)),
     Intention("Get-glass",
               {"Request-object-with-open-hand": 1.0, "Point-to-glass": 2.0},
               {"Turn-glass": 0.8, "Fill-glass": 0.3, "Hand-over-full-glass": 0.8},
@@ -204,13 +206,16 @@ INTENTIONS: tuple[Intention, ...] = (
               {"Request-object-with-open-hand": 1.0, "Point-to-bottle": 2.0},
               {"Open-bottle": 0.3, "Fill-glass": 0.8},
               {"bottle_closed_RWS": 0.5, "bottle_open_RWS": 0.6}),
-    Intention("Give-glass", {"Reach-grasp-AG-glass-to-hand-over": 2.5}, {"Turn-glass": 0.3, "Fill-glass": 0.5}),
+    Intention("Give-glass", {"Reach-grasp-AG-glass-to-hand-over": 2.5}, {"Turn-glass": 0.3, "Fill-glass": 0.5},
+              acts=("hold_out_glass",)),
     # a closed bottle handed over is to be opened while opening it is the sub-goal; once it is not
     # (the glass already full, say), it is simply given
     Intention("Give-bottle", {"Reach-grasp-AG-open-bottle-to-hand-over": 2.5, "Reach-grasp-AG-closed-bottle-to-hand-over": 1.2},
-              {"Fill-glass": 0.5, "Hand-over-full-glass": 0.5}),
+              {"Fill-glass": 0.5, "Hand-over-full-glass": 0.5}, acts=("hold_out_bottle",)),
 )
 IL_ITEMS: tuple[str, ...] = tuple(i.name for i in INTENTIONS)
+#: intention -> the partner's acts that carry it out (seen while it is inferred: the reading succeeded)
+INTENTION_ACTS: dict[str, tuple[str, ...]] = {i.name: i.acts for i in INTENTIONS if i.acts}
 
 # ---------------------------------------------------------------------------------------------
 # Action monitoring layer (AML): mismatches between the intention and what is possible
