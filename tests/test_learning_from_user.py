@@ -44,7 +44,8 @@ def test_without_learning_nothing_is_learnt_and_the_priors_stay():
 
 def test_an_above_grip_that_pours_is_misread_then_read_right_after_one_success(tmp_path):
     """The seed's priors read an above grip on the open bottle as a hand-over: the robot decides to receive it.
-    The glass filled (a sub-goal reached) opens SUCCESS; the next time the robot answers the grip by waiting."""
+    The pour seen while a pour is read, and the glass filled (a sub-goal reached), open SUCCESS; the next time the
+    robot answers the grip by waiting."""
     path = tmp_path / "weights.json"
     tl = load_timeline(POUR_ABOVE)
     first = replay(tl, record=False, learn=path)
@@ -80,11 +81,45 @@ def test_a_person_of_the_seeds_convention_is_read_again_after_one_success(tmp_pa
     assert receive_at(again) == pytest.approx(receive_at(with_priors), abs=0.02)
 
 
-def test_nothing_is_learnt_without_a_success(tmp_path):
+def _pour_above(name: str, keep=lambda e: True, extra=()) -> object:
     data = load_timeline(POUR_ABOVE)
+    events = sorted([e for e in data.events if keep(e)] + list(extra), key=lambda e: e["t"])
+    return timeline_from_dict({"name": name, "duration": data.duration, "events": events})
+
+
+def test_seeing_the_partner_do_what_the_reading_predicts_is_a_success(tmp_path):
+    """The glass is never seen full (the person drinks at once, the hand hides it): the pour seen while the robot
+    reads a pour is success enough to learn what the above grip meant."""
+    tl = _pour_above("pour_unseen_fill", keep=lambda e: "glass" not in e or e["t"] == 0.0)
+    path = tmp_path / "weights.json"
+    replay(tl, record=False, learn=path)
+    assert weights(path)[POUR_CHAIN]["grasp_ag_bottle"] > 0.5
+    assert decided(replay(tl, record=False, learn=path)) == ["Wait"]
+
+
+def test_a_grip_read_on_the_other_object_while_carrying_leaves_the_grip_in_hand(tmp_path):
+    """Carried beside the glass, the bottle in hand is read for a while as a side grip on the glass (as vision
+    does): the above grip on the bottle stays the grip in hand (GRIP) and learns the pour; the misread grip, on
+    the glass, learns nothing about the bottle's chains (and none of the glass's was read)."""
+    misread = [{"t": 3.0, "hand": {"posture": "grasp_sg", "object_in_hand": "glass"}}]
+    tl = _pour_above("pour_misread", extra=misread)
+    upto = timeline_from_dict({"name": "upto", "duration": 4.3, "events": [e for e in tl.events if e["t"] <= 4.3]})
+    net = replay(upto, record=False, overrides={"learning.rate": LEARNING_RATE}).agent.net
+    held = dict(zip(net.spec.fields["GRIP"].items, net.presence("GRIP")))
+    assert held["grasp_ag_bottle"] > 0.9 and held["grasp_sg_glass"] > 0.9
+    path = tmp_path / "weights.json"
+    replay(tl, record=False, learn=path)
+    w = weights(path)
+    prior = Cognition(overrides={"learning.rate": LEARNING_RATE}).learned_weights()["OL->ASL"]
+    assert w[POUR_CHAIN]["grasp_ag_bottle"] > 0.95
+    assert all(w[c]["grasp_sg_glass"] == pytest.approx(prior[c]["grasp_sg_glass"], abs=1e-3)
+               for c in w if "grasp_sg_glass" in w[c])
+
+
+def test_nothing_is_learnt_without_a_success(tmp_path):
     # the glass never fills and the pour is never seen: the above grip, then nothing
-    events = [e for e in data.events if ("glass" not in e or e["t"] == 0.0) and e.get("hand", {}).get("posture") != "pour"]
-    tl = timeline_from_dict({"name": "no_success", "duration": data.duration, "events": events})
+    tl = _pour_above("no_success", keep=lambda e: ("glass" not in e or e["t"] == 0.0)
+                     and e.get("hand", {}).get("posture") != "pour")
     path = tmp_path / "weights.json"
     replay(tl, record=False, learn=path)
     prior = Cognition(overrides={"learning.rate": LEARNING_RATE}).learned_weights()["OL->ASL"]
