@@ -83,3 +83,22 @@ def test_an_active_person_pours_with_the_grip_of_their_convention(convention, gr
     hc.run(1.0)
     start = hc.events("start")[0]
     assert start.what == "pour" and start.detail["grip"] == grip
+
+
+def test_the_robots_latest_request_is_the_one_answered_once_the_hand_is_free():
+    """Busy (waiting to take what the robot would offer), the person hears "give me the glass", then "you can
+    drink now": once free they drink; the earlier request, not begun, is dropped as superseded."""
+    from assistbot.human.script import parse_human
+
+    w = build_world(Arrangement.from_mapping({"bottle": {"zone": "RWS", "state": "open"},
+                                              "glass": {"zone": "HWS", "state": "full"}}), seed=0)
+    hc = HumanController(w, config=parse_human({"profile": "passive"}))
+    hc.start("take_from_robot", object="bottle", timeout=3.0)
+    hc.hear("request:glass", 0.2)
+    hc.hear("suggest:drink", 1.0)
+    hc.run(4.5)
+    starts = [e.what for e in hc.events("start")]
+    assert starts[:2] == ["take_from_robot", "drink"], starts
+    dropped = [e for e in hc.events("note") if e.what == "dropped"]
+    assert any(e.detail["behaviour"] == "hand_to_robot" and "superseded by suggest:drink" in e.detail["reason"]
+               for e in dropped), dropped

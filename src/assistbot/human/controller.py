@@ -108,7 +108,13 @@ class HumanController:
 
     # ------------------------------------------------------------------ responses to the robot
     def _on_heard(self, tag: str) -> None:
-        for resp in policy.response_to_tag(self, tag):
+        answers = policy.response_to_tag(self, tag)
+        if answers:
+            # the robot's latest request is the one answered: what an earlier one asked, not begun yet, is dropped
+            for resp in [r for r in self._pending if _key(r) not in self._answers_sight and r not in answers]:
+                self._pending.remove(resp)
+                self.log.append(Event(self.t, "note", "dropped", {"behaviour": resp[0], "reason": f"superseded by {tag}", **resp[1]}))
+        for resp in answers:
             if resp not in self._pending:
                 self._pending.append(resp)
             else:   # asked for in words too: it no longer hangs on the sight
