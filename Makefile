@@ -69,12 +69,18 @@ dnf-vs-fsm: $(STAMP)
 	  $(BIN)/assistbot report render/sweeps/dnf-vs-fsm/$$n --by agent || exit $$?; \
 	done
 
-# Learning from the default person does not change what the robot does: the seed's Fig. 3-4 and Fig. 5, ten
-# episodes each learning in a row, each beside the same episode with the priors (vision; 40 episodes, about
-# 40 min on one core), into render/learn/.
+# Learning from the user, into render/learn/: the default person (the seed's Fig. 3-4 and Fig. 5, ten episodes
+# each learning in a row, each beside the same episode with the priors: learning changes nothing), then the
+# partner with the swapped grips (scenarios/learning/swapped-pour-hws.yaml, five episodes from three seeds, and
+# the seed's person there with the priors). Vision; 80 episodes, about 60 min on one core.
+SWAPPED := scenarios/learning/swapped-pour-hws.yaml
 learning: $(STAMP)
 	$(BIN)/assistbot learn paper-fig3-4 --episodes 10 --compare --out render/learn/paper-fig3-4 --force
 	$(BIN)/assistbot learn paper-fig5 --episodes 10 --compare --out render/learn/paper-fig5 --force
+	@for s in 0 10 20; do \
+	  $(BIN)/assistbot learn $(SWAPPED) --episodes 5 --compare --seed $$s --out render/learn/swapped-$$s --force || exit $$?; \
+	done
+	$(BIN)/assistbot learn $(SWAPPED) --set human.grip_convention=seed --episodes 5 --compare --out render/learn/seed-person --force
 
 # The wheel as a user installs it: built, installed into a fresh venv, run from a temporary folder.
 wheel-check:
