@@ -42,7 +42,9 @@ MAX_JOINT_SPEED = 1.2       # rad/s, any arm joint
 MIN_DURATION = 0.4          # s, shortest reach
 ANGULAR_SPEED = 1.0         # rad/s mean hand rotation speed of a reach
 SETTLED_STEP = 1e-6         # rad: an IK step below this at rest ends the IK until the next motion
-SERVO_LAG = 0.25            # s: the hand reaches its commanded pose about this long after the command
+#: s a rehearsed move goes on after its command has arrived, as a live one goes on while the measured hand
+#: catches up and the next move is begun (what makes a rehearsal foretell the pours: docs/measurements.md)
+SERVO_LAG = 0.25
 
 
 def _rot(z_axis, y_axis) -> np.ndarray:
