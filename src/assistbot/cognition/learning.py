@@ -4,7 +4,8 @@ The seed assumes which grip means which goal (above grip: hand over; side grip: 
 proposes to learn it from the user. Here the OL -> ASL weights from each grip item onto the chains a grip
 on the same object begins (`task.GRIP_CHAINS`) learn by the field library's gated Hebbian rule
 (`CognitionConfig`'s ``learning`` block): while SUCCESS is up (an action of the robot's finished as it
-should, or a sub-goal was reached), the grip in hand (GRIP, a memory of the last grip seen) moves its
+should, a sub-goal was reached, or the partner was seen doing what the inferred intention predicts), the grip
+in hand (GRIP, a memory of the grip seen as an object was taken) moves its
 weight toward the chain ASL read last (ASL's memory trace) and away from a chain read before and given
 up, keeping half its prior; a chain that took no part keeps its weight.
 

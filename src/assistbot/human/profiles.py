@@ -8,7 +8,7 @@ from dataclasses import dataclass, replace
 HOLD_OUT_REGION = (0.08, 0.08, 0.06)
 #: what a person's grips mean (their convention): the grip they hand things over with, and the one they pour
 #: with. The seed's partner hands over from above and pours from the side; a person may do it the other way.
-#: (Turning a glass upside down is always done from the side: from above, half a turn is beyond a forearm.)
+#: (An upside-down glass is turned upright from the side either way: from above, half a turn is beyond a forearm.)
 GRIP_CONVENTIONS: dict[str, tuple[str, str]] = {"seed": ("ag", "sg"), "swapped": ("sg", "ag")}
 
 
