@@ -5,6 +5,7 @@ import pytest
 
 from assistbot.human.controller import HumanController
 from assistbot.human.perception import RobotView
+from assistbot.human.script import parse_human
 from assistbot.world import Arrangement, all_arrangements, build_world
 
 
@@ -75,8 +76,6 @@ def test_the_robot_holding_the_bottle_out_again_is_seen_again():
 
 @pytest.mark.parametrize("convention, grip", [("seed", "sg"), ("swapped", "ag")])
 def test_an_active_person_pours_with_the_grip_of_their_convention(convention, grip):
-    from assistbot.human.script import parse_human
-
     w = build_world(Arrangement.from_mapping({"bottle": {"zone": "HWS", "state": "open"},
                                               "glass": {"zone": "HWS", "state": "empty"}}), seed=0)
     hc = HumanController(w, config=parse_human({"profile": "active", "grip_convention": convention}))
@@ -88,8 +87,6 @@ def test_an_active_person_pours_with_the_grip_of_their_convention(convention, gr
 def test_the_robots_latest_request_is_the_one_answered_once_the_hand_is_free():
     """Busy (waiting to take what the robot would offer), the person hears "give me the glass", then "you can
     drink now": once free they drink; the earlier request, not begun, is dropped as superseded."""
-    from assistbot.human.script import parse_human
-
     w = build_world(Arrangement.from_mapping({"bottle": {"zone": "RWS", "state": "open"},
                                               "glass": {"zone": "HWS", "state": "full"}}), seed=0)
     hc = HumanController(w, config=parse_human({"profile": "passive"}))

@@ -52,7 +52,7 @@ def claim(out: Path) -> None:
     """Make ``out`` the folder of a run starting now: the PARTIAL marker first, then an earlier run's files go."""
     out.mkdir(parents=True, exist_ok=True)
     replace_text(out / PARTIAL, f"this run has not finished: started {time.strftime('%Y-%m-%d %H:%M:%S')}, "
-                                 f"process {os.getpid()}; the files here are incomplete\n")
+                                f"process {os.getpid()}; the files here are incomplete\n")
     for name in RUN_FILES:
         (out / name).unlink(missing_ok=True)
         (out / f"{name}.tmp").unlink(missing_ok=True)
