@@ -100,10 +100,11 @@ def test_only_an_active_source_items_weights_change_and_only_while_the_gate_is_o
 
 
 def traced_hebbian_net(backend: str, sources: list[str] | None = None, post_threshold: float = 0.0,
-                       targets: list[str] | dict[str, list[str]] | None = None) -> Network:
+                       targets: list[str] | dict[str, list[str]] | None = None, relative: bool = False,
+                       y_prior: float = -1.0) -> Network:
     memory = {"tau_build": 0.1, "tau_decay": 1.0, "amplitude": 0.0, "threshold": 0.5}
     learn = {"rate": 2.0, "decay": 1.0, "gate": "G.ok", "bounds": [0.0, 2.0], "traces": "both",
-             "post_threshold": post_threshold}
+             "post_threshold": post_threshold, "relative": relative}
     if sources is not None:
         learn["sources"] = sources
     if targets is not None:
@@ -113,7 +114,7 @@ def traced_hebbian_net(backend: str, sources: list[str] | None = None, post_thre
         "fields": {"pre": _field(["x", "y"], 4.0, memory=memory), "post": _field(["p", "q", "r"], 4.0, memory=memory),
                    "G": _field(["ok"], 4.0)},
         "couplings": [{"source": "pre", "target": "post", "k": 0.0, "learn": learn,
-                       "table": {t: {"x": 0.2, "y": -1.0} for t in ("p", "q", "r")}}],
+                       "table": {t: {"x": 0.2, "y": y_prior} for t in ("p", "q", "r")}}],
     }, backend=backend)
 
 
@@ -166,6 +167,53 @@ def test_a_rule_on_traces_one_step_against_the_formula(backend):
     expected = w0 + 0.01 * g * m["pre"][None, :] * (2.0 * m["post"][:, None] - 1.0 * w0)
     expected[:, 1] = -1.0
     assert np.allclose(net.table("pre->post"), np.clip(expected, [[0.0, -1.0]], 2.0), atol=1e-13)
+
+
+@pytest.mark.parametrize("backend", BACKENDS)
+def test_a_relative_rule_one_step_against_the_formula(backend):
+    """c_m over the largest c_m among each source item's learning targets above the threshold: x learns onto
+    p and q only, so r's trace (the largest of all) does not scale x's row; y's row (all three) is scaled by it."""
+    rng = np.random.default_rng(7)
+    net = traced_hebbian_net(backend, targets={"x": ["p", "q"], "y": ["p", "q", "r"]}, post_threshold=0.05,
+                             relative=True, y_prior=0.5)
+    net.state_u[:] = rng.uniform(-4.0, 4.0, net.state_u.size)
+    net.state_m[:] = rng.uniform(0.0, 0.6, net.state_m.size)
+    post_at = net.item_state_indices("post")
+    net.state_m[post_at] = [0.3, 0.45, 0.9]
+    w0 = net.table("pre->post")
+    g = net.presence("G")[0]
+    net.step(1)
+    m = {f: net.state_m[net.item_state_indices(f)] for f in ("pre", "post")}
+    learns = np.array([[1, 1], [1, 1], [0, 1]], dtype=float) * (m["post"] > 0.05)[:, None]
+    top = (learns * m["post"][:, None]).max(axis=0)
+    assert top[0] == m["post"][1] and top[1] == m["post"][2]
+    expected = w0 + 0.01 * g * m["pre"][None, :] * (2.0 * m["post"][:, None] / top[None, :] - 1.0 * w0)
+    expected = np.where(learns > 0, np.clip(expected, 0.0, 2.0), w0)
+    assert np.allclose(net.table("pre->post"), expected, atol=1e-13)
+
+
+@pytest.mark.parametrize("backend", BACKENDS)
+def test_a_relative_rule_keeps_a_target_that_won_when_a_later_reading_is_none_of_the_sources(backend):
+    """x seen with p, then the post field moves on to r, which is not one of x's targets, and p's trace fades
+    before the gate opens: the plain rule unlearns x -> p toward the faded trace, the relative one keeps it
+    (p was the only target of x that took part); with q read after p, x -> p falls under either rule."""
+    def run(relative: bool, then: str) -> np.ndarray:
+        net = traced_hebbian_net(backend, targets={"x": ["p", "q"]}, post_threshold=0.05, relative=relative)
+        net.set_table("pre->post", {"p": {"x": 2.0}, "q": {"x": 0.0}})
+        net.set_stimulus("pre", "x", 8.0)
+        net.set_stimulus("post", "p", 8.0)
+        net.run(1.0)
+        net.set_stimulus("post", "p", 0.0)
+        net.set_stimulus("post", then, 8.0)
+        net.run(1.5)
+        net.set_stimulus("G", "ok", 8.0)
+        net.run(2.0)
+        return net.table("pre->post")[:, 0]
+    plain, relative = run(False, "r"), run(True, "r")
+    assert plain[0] < 1.0 and relative[0] > 1.95
+    assert plain[2] == relative[2] == 0.2, "r is not a target of x: its prior"
+    switched = run(True, "q")
+    assert switched[0] < 1.0 and switched[1] > 1.5
 
 
 @pytest.mark.parametrize("backend", BACKENDS)
@@ -346,6 +394,7 @@ def test_learned_weights_round_trip_survive_reset_and_parameter_changes_and_forg
     ({"learn": {"rate": 1.0, "targets": {"x": None}}}, "learn.targets.x", "a list of target items"),
     ({"learn": {"rate": 1.0, "post_threshold": -0.1}}, "learn.post_threshold", ">= 0"),
     ({"learn": {"rate": 1.0, "keep": 1.5}}, "learn.keep", "from 0 to 1"),
+    ({"learn": {"rate": 1.0, "relative": "yes"}}, "learn.relative", "true or false"),
 ])
 def test_bad_learning_declarations_name_the_coupling_and_key(change, key, words):
     spec = {"dt": 0.01, "fields": {"pre": _field(["x"]), "post": _field(["p"]), "G": _field(["ok"])},

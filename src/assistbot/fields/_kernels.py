@@ -249,25 +249,34 @@ def build_traces(f, m, offsets, mem_fields, mem_build, mem_decay, mem_thr):
 
 @inlined
 def learn(f, m, item_pos, w, dt, l_src, l_ns, l_tgt, l_nt, l_gate, l_tpre, l_tpost, l_pre_item, l_pre_ptr, l_learns,
-          l_post_thr, l_rate, l_decay, l_floor, l_hi, l_ptr):
+          l_post_thr, l_rel, l_rate, l_decay, l_floor, l_hi, l_ptr):
     """w += dt g c_pre (rate c_post - decay w) where the weight learns and c_post exceeds the post threshold,
     clipped to [its floor, the upper bound] (see compiled); each c the output f, or the memory trace m on a traced side, c_pre
-    read at each source's pre item."""
+    read at each source's pre item; with l_rel, c_post over the largest among the source's learning targets."""
     for L in range(l_src.size):
         ns, t0, p0, q0 = l_ns[L], l_tgt[L], l_ptr[L], l_pre_ptr[L]
         g = 1.0 if l_gate[L] < 0 else f[item_pos[l_gate[L]]]
         cpre = m if l_tpre[L] else f
         cpost = m if l_tpost[L] else f
-        for mi in range(l_nt[L]):
-            post = cpost[item_pos[t0 + mi]]
-            if post <= l_post_thr[L]:
+        for j in range(ns):
+            at = l_pre_item[q0 + j]
+            if at < 0:
                 continue
-            for j in range(ns):
-                q = p0 + mi * ns + j
-                at = l_pre_item[q0 + j]
-                if l_learns[q] == 0.0 or at < 0:
+            top = 1.0
+            if l_rel[L]:
+                top = 0.0
+                for mi in range(l_nt[L]):
+                    post = cpost[item_pos[t0 + mi]]
+                    if l_learns[p0 + mi * ns + j] != 0.0 and post > l_post_thr[L] and post > top:
+                        top = post
+                if top <= 0.0:
                     continue
-                v = w[q] + dt * g * cpre[item_pos[at]] * (l_rate[L] * post - l_decay[L] * w[q])
+            for mi in range(l_nt[L]):
+                post = cpost[item_pos[t0 + mi]]
+                q = p0 + mi * ns + j
+                if post <= l_post_thr[L] or l_learns[q] == 0.0:
+                    continue
+                v = w[q] + dt * g * cpre[item_pos[at]] * (l_rate[L] * post / top - l_decay[L] * w[q])
                 w[q] = l_floor[q] if v < l_floor[q] else (l_hi[L] if v > l_hi[L] else v)
 
 
@@ -280,7 +289,7 @@ def run(n_steps, u, S, S_ext, stim_item, xi, use_noise,
         R_indptr, R_indices, R_data,
         f, buf, proj, pad, tmp, rate, d, tbuf,
         m, w, use_mem, mem_fields, mem_amp, mem_build, mem_decay, mem_thr,
-        dt, l_src, l_ns, l_tgt, l_nt, l_gate, l_tpre, l_tpost, l_pre_item, l_pre_ptr, l_learns, l_post_thr, l_k, l_rate,
+        dt, l_src, l_ns, l_tgt, l_nt, l_gate, l_tpre, l_tpost, l_pre_item, l_pre_ptr, l_learns, l_post_thr, l_rel, l_k, l_rate,
         l_decay, l_floor, l_hi, l_ptr):
     P = u.size
     for step in range(n_steps):
@@ -333,7 +342,7 @@ def run(n_steps, u, S, S_ext, stim_item, xi, use_noise,
                 for q in range(R_indptr[m_], R_indptr[m_ + 1]):
                     S[R_indices[q]] += dm * R_data[q]
         learn(f, m, item_pos, w, dt, l_src, l_ns, l_tgt, l_nt, l_gate, l_tpre, l_tpost, l_pre_item, l_pre_ptr, l_learns,
-              l_post_thr, l_rate, l_decay, l_floor, l_hi, l_ptr)
+              l_post_thr, l_rel, l_rate, l_decay, l_floor, l_hi, l_ptr)
         if use_noise:
             for p in range(P):
                 u[p] += dt_tau[p] * (rate[p] + S[p]) + noise_scale[p] * xi[step, p]

@@ -251,6 +251,7 @@ class LearningArrays:
     pre_ptr: np.ndarray     # (L+1,) start of each coupling's pre_item
     learns: np.ndarray  # flat like the weights: 1.0 where the weight learns, 0.0 where it keeps its prior
     post_threshold: np.ndarray  # (L,) weights onto a target item change only while its c_m exceeds this
+    relative: np.ndarray    # (L,) bool: c_m over the largest c_m among each source item's learning targets
     k: np.ndarray
     rate: np.ndarray
     decay: np.ndarray
@@ -313,6 +314,7 @@ def _learning_arrays(spec: NetworkSpec, item_off: dict[str, int]) -> LearningArr
         pre_ptr=ints(np.concatenate([[0], np.cumsum([len(parts) for parts in pre_items])])),
         learns=np.concatenate(learns) if learns else np.zeros(0),
         post_threshold=floats([r.post_threshold for r in rules]),
+        relative=np.array([r.relative for r in rules], dtype=np.bool_),
         k=floats([c.k for c in learned]),
         rate=floats([r.rate for r in rules]),
         decay=floats([r.decay for r in rules]),

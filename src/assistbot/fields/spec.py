@@ -278,7 +278,8 @@ class _Coupling:
         return fields_by_name[self.source], fields_by_name[self.target]
 
 
-LEARN_KEYS = ["rate", "decay", "gate", "bounds", "keep", "traces", "pre", "sources", "targets", "post_threshold"]
+LEARN_KEYS = ["rate", "decay", "gate", "bounds", "keep", "traces", "pre", "sources", "targets", "post_threshold",
+              "relative"]
 TRACE_SIDES = ("none", "pre", "post", "both")
 
 
@@ -306,7 +307,12 @@ class LearnSpec:
       each learning source item to its own targets (``{x: [p, q], y: [r]}``): only those pairs learn;
     - ``post_threshold``: only the weights onto target items whose c_m exceeds it change (default 0: with
       traces, a target never active keeps its weights; one that was active and lost to another relaxes
-      toward what is left of its trace).
+      toward what is left of its trace);
+    - ``relative``: c_m divided by the largest c_m among the source item's learning targets above
+      ``post_threshold`` (that one counts 1), so a row learns which of its targets won, not how far a trace
+      has faded by the time the gate opens. A trace fades once another item of its field is up, and a gate
+      that opens late would otherwise unlearn a target that was right but followed by a reading that is
+      none of this source's targets (another object's chain, say).
 
     ``keep``: the share (0 to 1) of its prior, above the lower bound, that a weight keeps: it never falls
     below ``lowest + keep * (prior - lowest)`` (default 0: down to the bound), so one lost reading cannot
@@ -323,6 +329,7 @@ class LearnSpec:
     targets: list[str] | dict[str, list[str]] | None = None
     post_threshold: float = 0.0
     keep: float = 0.0
+    relative: bool = False
 
     def validate(self, where: str, fields_by_name: Mapping[str, "FieldSpec"], source: "FieldSpec | None" = None,
                  target: "FieldSpec | None" = None) -> None:
@@ -339,6 +346,8 @@ class LearnSpec:
             gate_item(where, self.gate, fields_by_name)
         self.post_threshold = _number(where, "learn.post_threshold", self.post_threshold, nonneg=True)
         self.keep = _number(where, "learn.keep", self.keep, nonneg=True)
+        if not isinstance(self.relative, bool):
+            raise FieldError(where, "learn.relative", f"must be true or false, got {self.relative!r}")
         if self.keep > 1.0:
             raise FieldError(where, "learn.keep", f"is a share of the prior, from 0 to 1; got {self.keep:g}")
         if self.sources is not None:

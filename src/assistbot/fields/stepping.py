@@ -128,8 +128,12 @@ class NumpyStepper:
             at = L.pre_item[L.pre_ptr[i]:L.pre_ptr[i + 1]]
             pre = np.where(at >= 0, (traced if L.trace_pre[i] else presence)[np.maximum(at, 0)], 0.0)
             post = (traced if L.trace_post[i] else presence)[L.target[i]:L.target[i] + L.n_target[i]]
-            dW = dt * g * pre[None, :] * (L.rate[i] * post[:, None] - L.decay[i] * W)
             learns = L.table(L.learns, i) * (post > L.post_threshold[i])[:, None]
+            c_m = np.broadcast_to(post[:, None], W.shape)
+            if L.relative[i]:
+                top = (learns * c_m).max(axis=0)
+                c_m = c_m / np.where(top > 0, top, 1.0)[None, :]
+            dW = dt * g * pre[None, :] * (L.rate[i] * c_m - L.decay[i] * W)
             W += learns * dW
             W[:] = np.where(learns > 0, np.clip(W, L.table(L.floor, i), L.high[i]), W)
 
@@ -189,7 +193,7 @@ class NumbaStepper:
         self._learning = (
             mem.any, mem.fields, mem.amplitude, mem.build, mem.decay, mem.threshold,
             c.spec.dt, L.source, L.n_source, L.target, L.n_target, L.gate, L.trace_pre, L.trace_post, L.pre_item,
-            L.pre_ptr, L.learns, L.post_threshold, L.k, L.rate, L.decay, L.floor, L.high, L.ptr,
+            L.pre_ptr, L.learns, L.post_threshold, L.relative, L.k, L.rate, L.decay, L.floor, L.high, L.ptr,
         )
 
     def run(self, n: int, u: np.ndarray, S: np.ndarray, S_ext: np.ndarray, stim_item: np.ndarray, xi: np.ndarray | None,
