@@ -797,16 +797,17 @@ def _tip_into_glass(c, way: _PourWay, mouth_now: Callable[[], np.ndarray], base0
     if not (yield from _move(c, p, R)):
         return False, "could not bring the bottle to the glass"
     tilted = 0.0
+    # tipping and tipping back are straight moves over the glass, as the way was planned: not carried over it
     for f in TILT_STEPS:
         p, R = way.pose(float(f))
-        reached = yield from _move(c, p, R, speed=POUR_SPEED, tol=POUR_TOL)
+        reached = yield from _move_straight(c, p, R, speed=POUR_SPEED, tol=POUR_TOL)
         if not reached or (f >= POURS_FROM and mouth_off(float(f)) > MOUTH_TOLERANCE):
             break       # the arm cannot bring the mouth over the rim: tilting on would pour beside the glass
         tilted = float(f)
     full = tilted == 1.0 and (yield from _wait_until(c, lambda: w.state().glass_state == "full", timeout))
     for f in np.linspace(0.75 * tilted, 0.0, 4):
         p, R = way.pose(float(f))
-        yield from _move(c, p, R, speed=POUR_SPEED, tol=POUR_TOL)
+        yield from _move_straight(c, p, R, speed=POUR_SPEED, tol=POUR_TOL)
     yield from put_down(c, "bottle", at=tuple(base0))
     if tilted < 1.0:
         return False, "could not hold the bottle over the glass"
