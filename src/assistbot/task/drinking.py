@@ -139,6 +139,13 @@ def _both(obj_state: str, w: float) -> dict[str, float]:
     return {f"{obj_state}_HWS": w, f"{obj_state}_RWS": w}
 
 
+#: an open bottle or a glass held out toward the robot reads as its hand-over on its own, whichever grip took
+#: it (the grip foretells a hand-over; the hold-out is one) ...
+HOLD_OUT_HANDS_OVER = 1.6
+#: ... and not as pouring from it, turning it or drinking from it
+HOLD_OUT_NOT_IN_USE = -0.8
+
+
 ASL_CHAINS: tuple[Chain, ...] = (
     Chain("Reach-grasp-SG-closed-bottle",
           {"reach_bottle": 0.4, "grasp_sg_bottle": grip_prior("grasp_sg", "bottle", "ask-help"), "hold_out_bottle": 0.6, "pour": -1.0},
@@ -147,20 +154,25 @@ ASL_CHAINS: tuple[Chain, ...] = (
           {"reach_bottle": 0.4, "grasp_ag_bottle": grip_prior("grasp_ag", "bottle", "hand-over"), "hold_out_bottle": 0.6},
           _both("bottle_closed", 1.0), {"Open-bottle": 0.5}),
     Chain("Reach-grasp-SG-open-bottle-to-pour",
-          {"reach_bottle": 0.4, "grasp_sg_bottle": grip_prior("grasp_sg", "bottle", "pour"), "pour": 2.4, "hold_out_bottle": -0.8},
+          {"reach_bottle": 0.4, "grasp_sg_bottle": grip_prior("grasp_sg", "bottle", "pour"), "pour": 2.4,
+           "hold_out_bottle": HOLD_OUT_NOT_IN_USE},
           {**_both("bottle_open", 0.6), **_both("bottle_closed", 0.6)}, {"Fill-glass": 0.5}),
     Chain("Reach-grasp-AG-open-bottle-to-hand-over",
-          {"reach_bottle": 0.4, "grasp_ag_bottle": grip_prior("grasp_ag", "bottle", "hand-over"), "hold_out_bottle": 0.6},
+          {"reach_bottle": 0.4, "grasp_ag_bottle": grip_prior("grasp_ag", "bottle", "hand-over"),
+           "hold_out_bottle": HOLD_OUT_HANDS_OVER},
           _both("bottle_open", 1.0), {"Fill-glass": 0.5}),
     Chain("Reach-grasp-AG-glass-to-hand-over",
-          {"reach_glass": 0.4, "grasp_ag_glass": grip_prior("grasp_ag", "glass", "hand-over"), "hold_out_glass": 1.0},
+          {"reach_glass": 0.4, "grasp_ag_glass": grip_prior("grasp_ag", "glass", "hand-over"),
+           "hold_out_glass": HOLD_OUT_HANDS_OVER},
           {**_both("glass_inverted", 0.6), **_both("glass_empty", 0.6), **_both("glass_full", 0.3)},
           {"Turn-glass": 0.3, "Fill-glass": 0.5}),
     Chain("Reach-grasp-SG-glass-to-turn",
-          {"reach_glass": 0.4, "grasp_sg_glass": grip_prior("grasp_sg", "glass", "turn"), "drink": -1.0},
+          {"reach_glass": 0.4, "grasp_sg_glass": grip_prior("grasp_sg", "glass", "turn"), "drink": -1.0,
+           "hold_out_glass": HOLD_OUT_NOT_IN_USE},
           _both("glass_inverted", 1.0), {"Turn-glass": 0.5}),
     Chain("Reach-grasp-SG-full-glass-to-drink",
-          {"reach_glass": 0.4, "grasp_sg_glass": grip_prior("grasp_sg", "glass", "drink"), "drink": 2.4},
+          {"reach_glass": 0.4, "grasp_sg_glass": grip_prior("grasp_sg", "glass", "drink"), "drink": 2.4,
+           "hold_out_glass": HOLD_OUT_NOT_IN_USE},
           {**_both("glass_full", 1.0), **_both("glass_empty", 0.6)}, {}),
     # a communicative gesture is one clear cue on its own
     Chain("Request-object-with-open-hand", {"open_hand_request": 3.8}, {}, {}),
