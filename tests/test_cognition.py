@@ -433,3 +433,39 @@ def test_without_the_failure_memory_the_failed_action_is_decided_again_and_again
     cog = Cognition(overrides={"couplings.AFL->AML.k": 0.0, "couplings.AFL->AEL.k": 0.0})
     decisions, _ = _run_with_failures(cog, HELD_OUT_GLASS, "Receive-object", 5, 40.0)
     assert [a for _, a in decisions][:3] == ["Receive-object"] * 3
+
+
+# -- a partner's error, told once ---------------------------------------------------------------
+
+def _decisions_while(cog, truth, seconds, action_seconds=3.0):
+    """Feed ``truth`` for ``seconds``, each decided action reported done ``action_seconds`` later."""
+    decided, t, running = [], cog.net.t, None
+    while t < seconds:
+        t = round(t + 0.1, 6)
+        robot = {}
+        if running is not None:
+            robot = {"action": running[0], "status": "succeeded" if t - running[1] >= action_seconds else "running"}
+        d = cog.update(oracle_percept(t, {**truth, "robot": robot}))
+        if robot.get("status") == "succeeded":
+            running = None
+        if d.new:
+            decided.append(d.action)
+            running = (d.action, t)
+    return decided
+
+
+def test_a_partners_error_is_told_once_while_they_go_on_and_again_after_a_new_act():
+    """A person who hands the closed bottle over with a side grip (their convention) is read as trying to open
+    it: the robot tells them they cannot, once, and as they go on holding it out, it helps (holds the bottle
+    for them) instead of telling them again. A new act ends that: the error may be told again."""
+    held_out_sg = {"bottle": {"zone": "HWS", "state": "closed"}, "glass": {"zone": "HWS", "state": "empty"},
+                   "hand": {"posture": "grasp_sg", "object_in_hand": "bottle", "held_out": True}}
+    cog = Cognition()
+    decided = _decisions_while(cog, held_out_sg, 25.0)
+    assert decided[:2] == ["Communicate-Error", "Grasp-hold-bottle-to-remove-cup"], decided
+    assert decided.count("Communicate-Error") == 1
+    told = cog._told
+    assert told is not None and told[0] == "Cannot-remove-stopper"
+    pointing = {**held_out_sg, "hand": {"posture": "pointing", "pointed_at": "glass"}}
+    _decisions_while(cog, pointing, cog.net.t + 2.0)
+    assert cog._told is None

@@ -40,6 +40,8 @@ from assistbot.fields import Network
 from assistbot.interfaces import Status
 
 SPOKEN_LAYERS = ("ASL", "IL", "AML", "AEL")
+#: the AML items that are the partner's errors (not the robot's own failures or a fallen object)
+PARTNER_ERRORS = frozenset(e.name for e in task.ERRORS)
 #: the layers whose peaks a log (`trace`) and an episode's video show
 LAYERS_SHOWN = ("ASL", "IL", "AML", "AEL", "CSGL_past", "CSGL_present", "CSGL_future")
 
@@ -129,6 +131,10 @@ class Cognition:
         self._succeeded_at = -math.inf          # when an action last finished as it should or a sub-goal was reached
         self._reached: set[str] = set()         # the sub-goals CSGL_past holds (a new one is a success)
         self._confirmed: set[str] = set()       # the intentions IL holds while OL sees their act (a new one too)
+        # a partner's error the robot has told them of, and the chains ASL read when it decided to: told once, the
+        # error is held down while the partner goes on with that act (`_apply_told_input`)
+        self._told: tuple[str, frozenset[str]] | None = None
+        self._error_reading: frozenset[str] = frozenset()
         self._pending: list[Said] = []
         self._new = False
         self._released: str | None = None
@@ -197,6 +203,7 @@ class Cognition:
             self.release(r.status)
         self._apply_failure_inputs()
         self._apply_success_input()
+        self._apply_told_input()
 
     def release(self, why: Status = Status.SUCCEEDED) -> None:
         """End the current decision: a transient inhibition of AEL and a habituation of the released action."""
@@ -215,6 +222,8 @@ class Cognition:
                 self._failures.pop(self.decision, None)
                 self._cleared[self.decision] = self.net.t
                 self._succeeded_at = self.net.t
+        elif self.decision == "Communicate-Error" and why is Status.SUCCEEDED and self.error in PARTNER_ERRORS:
+            self._told = (self.error, self._error_reading)
         self.history.append((self.net.t, f"release ({why.value})", self.decision))
         self._released = self.decision
         self.decision = None
@@ -257,6 +266,21 @@ class Cognition:
         self._reached, self._confirmed = reached, confirmed
         on = self.net.t - self._succeeded_at < float(st["success_seconds"])
         self.net.set_stimulus("SUCCESS", "success", float(st["success_pulse"]) if on else 0.0)
+
+    def _apply_told_input(self) -> None:
+        """Into AML at a partner's error the robot has told them of, while ASL reads no chain it did not read then:
+        said once, the error is not said again while the partner goes on with the act that showed it (a partner
+        whose grips mean something else, say, who goes on holding the bottle out), and the robot answers what it
+        infers as it would without the error. A new reading (the partner corrects, or does something else)
+        ends it; a reading lost for a moment does not."""
+        if self._told is None:
+            return
+        error, reading = self._told
+        if set(self.peaks("ASL")) - reading:
+            self._told = None
+            self.net.set_stimulus("AML", error, 0.0)
+        else:
+            self.net.set_stimulus("AML", error, float(self.config.data["stimulus"]["told"]))
 
     def _apply_release_inputs(self) -> None:
         rel = self.config.data["release"]
@@ -373,6 +397,7 @@ class Cognition:
                     if item == "Communicate-Error":
                         errs = self.peaks("AML")
                         self.error = errs[0] if errs else None
+                        self._error_reading = frozenset(self.peaks("ASL"))
                         if self.error:
                             e = task.UTTERANCES["AML"][self.error]
                             utt = task.Utterance("AEL", item, f"{utt.text} {e.text}", e.tag)

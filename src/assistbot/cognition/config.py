@@ -147,6 +147,8 @@ def default_config() -> dict[str, Any]:
             # memory forms after ~2.3 s), and into AML at the action's mismatch for pulse_seconds (below
             # threshold alone, above it with the memory of an earlier failure of the same action)
             "failure_report": 5.0, "report_seconds": 3.0,
+            # into AML at a partner's error once told, while the partner goes on with the act that showed it
+            "told": -6.0,
             "failure_pulse": 2.0, "pulse_seconds": 1.5,
             "success_clears": -20.0,  # into AFL at an action that finished (for report_seconds): its failure is past
             # into SUCCESS when a motion action finished as it should, a sub-goal was newly reached or the partner

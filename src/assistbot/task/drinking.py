@@ -139,10 +139,11 @@ def _both(obj_state: str, w: float) -> dict[str, float]:
     return {f"{obj_state}_HWS": w, f"{obj_state}_RWS": w}
 
 
-#: an open bottle or a glass held out toward the robot reads as its hand-over on its own, whichever grip took
-#: it (the grip foretells a hand-over; the hold-out is one) ...
+#: a glass held out toward the robot reads as its hand-over on its own, whichever grip took it (the grip
+#: foretells a hand-over; the hold-out is one), in any state. The bottle's hold-out is read with its state and
+#: grip: a closed bottle held out asks for help either way, and an open one held out is not the closed one's
 HOLD_OUT_HANDS_OVER = 1.6
-#: ... and not as pouring from it, turning it or drinking from it
+#: a held-out object is not being poured from, turned or drunk from
 HOLD_OUT_NOT_IN_USE = -0.8
 
 
@@ -158,8 +159,7 @@ ASL_CHAINS: tuple[Chain, ...] = (
            "hold_out_bottle": HOLD_OUT_NOT_IN_USE},
           {**_both("bottle_open", 0.6), **_both("bottle_closed", 0.6)}, {"Fill-glass": 0.5}),
     Chain("Reach-grasp-AG-open-bottle-to-hand-over",
-          {"reach_bottle": 0.4, "grasp_ag_bottle": grip_prior("grasp_ag", "bottle", "hand-over"),
-           "hold_out_bottle": HOLD_OUT_HANDS_OVER},
+          {"reach_bottle": 0.4, "grasp_ag_bottle": grip_prior("grasp_ag", "bottle", "hand-over"), "hold_out_bottle": 0.6},
           _both("bottle_open", 1.0), {"Fill-glass": 0.5}),
     Chain("Reach-grasp-AG-glass-to-hand-over",
           {"reach_glass": 0.4, "grasp_ag_glass": grip_prior("grasp_ag", "glass", "hand-over"),
