@@ -469,3 +469,21 @@ def test_a_partners_error_is_told_once_while_they_go_on_and_again_after_a_new_ac
     pointing = {**held_out_sg, "hand": {"posture": "pointing", "pointed_at": "glass"}}
     _decisions_while(cog, pointing, cog.net.t + 2.0)
     assert cog._told is None
+
+
+@pytest.mark.parametrize("state", ["empty", "inverted"])
+def test_a_glass_held_out_is_read_as_its_hand_over_whichever_grip_took_it(state):
+    """The seed reads a hand-over from the above grip; a person whose convention differs holds the glass out
+    from the side. Held out, it is read as a hand-over and received, not as turning or drinking; the side grip
+    alone (not held out) is never read as a hand-over."""
+    base = {"bottle": {"zone": "RWS", "state": "open"}, "glass": {"zone": "HWS", "state": state}}
+    out = {**base, "hand": {"posture": "grasp_sg", "object_in_hand": "glass", "held_out": True}}
+    cog = Cognition()
+    action, _ = _steady(cog, out, 6.0)
+    assert action == "Receive-object" and "Give-glass" in cog.peaks("IL")
+    assert "Reach-grasp-AG-glass-to-hand-over" in cog.peaks("ASL")
+    in_hand = {**base, "hand": {"posture": "grasp_sg", "object_in_hand": "glass"}}
+    cog = Cognition()
+    for i in range(60):
+        cog.update(oracle_percept(round(0.1 * (i + 1), 6), in_hand))
+        assert "Reach-grasp-AG-glass-to-hand-over" not in cog.peaks("ASL")
