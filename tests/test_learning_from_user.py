@@ -116,27 +116,6 @@ def test_a_grip_read_on_the_other_object_while_carrying_leaves_the_grip_in_hand(
                for c in w if "grasp_sg_glass" in w[c])
 
 
-def test_a_right_reading_is_kept_when_the_next_object_is_read_before_the_success(tmp_path):
-    """The open bottle handed over from above (the seed's convention), and before the robot's Receive-object has
-    succeeded the person already holds the glass out: ASL reads the glass's hand-over, and the bottle's chain's
-    trace fades by the time SUCCESS opens. The above grip on the bottle keeps its meaning (it was the only chain
-    of the bottle read): a later reading of another object's chain does not count against it."""
-    data = load_timeline(TIMELINES / "hand_over_open_bottle.yaml")
-    events = [dict(e) for e in data.events if e["t"] != 9.0]
-    events[0]["glass"] = {"zone": "HWS", "state": "empty"}
-    events += [{"t": 7.6, "hand": {"posture": "grasp_ag", "object_in_hand": "glass"}},
-               {"t": 8.0, "hand": {"held_out": True}},
-               {"t": 11.0, "robot": {"holding": "bottle", "status": "succeeded", "action": "Receive-object"}}]
-    tl = timeline_from_dict({"name": "next_object_first", "duration": 14.0,
-                             "events": sorted(events, key=lambda e: e["t"])})
-    path = tmp_path / "weights.json"
-    rep = replay(tl, record=False, learn=path)
-    assert decided(rep) == ["Receive-object"]
-    asl = dict(zip(rep.agent.net.spec.fields["ASL"].items, rep.agent.net.state_m[rep.agent.net.item_state_indices("ASL")]))
-    assert asl[OPEN_HAND_OVER] < 2 / 3 < asl["Reach-grasp-AG-glass-to-hand-over"], "the bottle's trace faded"
-    assert weights(path)[OPEN_HAND_OVER]["grasp_ag_bottle"] > 0.95
-
-
 def test_nothing_is_learnt_without_a_success(tmp_path):
     # the glass never fills and the pour is never seen: the above grip, then nothing
     tl = _pour_above("no_success", keep=lambda e: ("glass" not in e or e["t"] == 0.0)

@@ -312,7 +312,7 @@ class CognitionConfig:
                            "bounds": [0.0, float(learn["highest"])], "keep": float(learn["keep"]), "traces": "post",
                            "pre": "GRIP",
                            "targets": {grip: list(chains) for grip, chains in task.GRIP_CHAINS.items()},
-                           "post_threshold": float(learn["post_threshold"]), "relative": True}
+                           "post_threshold": float(learn["post_threshold"])}
 
     def copy(self) -> "CognitionConfig":
         return CognitionConfig(self.data)

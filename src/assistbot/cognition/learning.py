@@ -6,9 +6,8 @@ on the same object begins (`task.GRIP_CHAINS`) learn by the field library's gate
 (`CognitionConfig`'s ``learning`` block): while SUCCESS is up (an action of the robot's finished as it
 should, a sub-goal was reached, or the partner was seen doing what the inferred intention predicts), the grip
 in hand (GRIP, a memory of the grip seen as an object was taken) moves its
-weight toward the chain ASL read last among those the grip begins (ASL's memory trace, relative to the
-strongest of them: a reading of the other object's chain since then does not count against it) and away from
-a chain read before and given up, keeping half its prior; a chain that took no part keeps its weight.
+weight toward the chain ASL read last (ASL's memory trace) and away from a chain read before and given
+up, keeping half its prior; a chain that took no part keeps its weight.
 
 A weights file carries what was learnt from one episode to the next::
 
@@ -28,11 +27,10 @@ from typing import Any, Mapping
 
 from assistbot.errors import UserError
 
-#: the learning rate `--learn` switches on (per s). Above ``learning.decay`` (1/s): a grip's weight onto the chain
-#: of its own that ASL read last (the strongest trace among them; the rule is ``relative``, so however far that
-#: trace has faded when the success comes) relaxes to the priors' strength (``learning.highest``), most of the way
-#: within one success; onto one of its chains read before and given up, toward 1.5 times its trace over that one's
-#: (not below the share ``learning.keep`` of its prior)
+#: the learning rate `--learn` switches on (per s). Above ``learning.decay`` (1/s): a grip's weight onto a chain
+#: read to the end (its trace above 2/3) relaxes to the priors' strength (``learning.highest``), most of the way
+#: within one success; onto a chain read and then given up, toward what is left of its trace times 1.5 (not below
+#: the share ``learning.keep`` of its prior)
 LEARNING_RATE = 1.5
 FORMAT = "assistbot learned weights"
 KEY = "--learn"
