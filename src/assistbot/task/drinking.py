@@ -140,8 +140,9 @@ def _both(obj_state: str, w: float) -> dict[str, float]:
 
 
 #: a glass held out toward the robot reads as its hand-over on its own, whichever grip took it (the grip
-#: foretells a hand-over; the hold-out is one), in any state. The bottle's hold-out is read with its state and
-#: grip: a closed bottle held out asks for help either way, and an open one held out is not the closed one's
+#: foretells a hand-over; the hold-out is one), in any state. The bottle's hold-out weighs less: a closed bottle
+#: held out from the side asks for help (the seed's Fig. 3), and weighed like this the open bottle's hand-over
+#: would also take a closed bottle held out
 HOLD_OUT_HANDS_OVER = 2.4
 #: a held-out object is not being poured from, turned or drunk from
 HOLD_OUT_NOT_IN_USE = -0.8
