@@ -437,23 +437,6 @@ def test_without_the_failure_memory_the_failed_action_is_decided_again_and_again
 
 # -- a partner's error, told once ---------------------------------------------------------------
 
-def _decisions_while(cog, truth, seconds, action_seconds=3.0):
-    """Feed ``truth`` for ``seconds``, each decided action reported done ``action_seconds`` later."""
-    decided, t, running = [], cog.net.t, None
-    while t < seconds:
-        t = round(t + 0.1, 6)
-        robot = {}
-        if running is not None:
-            robot = {"action": running[0], "status": "succeeded" if t - running[1] >= action_seconds else "running"}
-        d = cog.update(oracle_percept(t, {**truth, "robot": robot}))
-        if robot.get("status") == "succeeded":
-            running = None
-        if d.new:
-            decided.append(d.action)
-            running = (d.action, t)
-    return decided
-
-
 def test_a_partners_error_is_told_once_while_they_go_on_and_again_after_a_new_act():
     """A person who hands the closed bottle over with a side grip (their convention) is read as trying to open
     it: the robot tells them they cannot, once, and as they go on holding it out, it helps (holds the bottle
@@ -461,15 +444,16 @@ def test_a_partners_error_is_told_once_while_they_go_on_and_again_after_a_new_ac
     held_out_sg = {"bottle": {"zone": "HWS", "state": "closed"}, "glass": {"zone": "HWS", "state": "empty"},
                    "hand": {"posture": "grasp_sg", "object_in_hand": "bottle", "held_out": True}}
     cog = Cognition()
-    decided = _decisions_while(cog, held_out_sg, 25.0)
+    decisions, said = _run_with_failures(cog, held_out_sg, None, 0, 25.0, fail_after=3.0)
+    decided = [a for _, a in decisions]
     assert decided[:2] == ["Communicate-Error", "Grasp-hold-bottle-to-remove-cup"], decided
     assert decided.count("Communicate-Error") == 1
-    told = [s.tag for s in cog.log if s.layer == "AEL" and s.item == "Communicate-Error"]
-    assert told == ["error:cannot_remove_stopper"]
+    assert [tag for _, layer, item, tag in said if layer == "AEL" and item == "Communicate-Error"] == \
+        ["error:cannot_remove_stopper"]
     pointing = {**held_out_sg, "hand": {"posture": "pointing", "pointed_at": "glass"}}
-    _decisions_while(cog, pointing, cog.net.t + 3.0)
-    again = _decisions_while(cog, held_out_sg, cog.net.t + 25.0)
-    assert again.count("Communicate-Error") == 1, again
+    _run_with_failures(cog, pointing, None, 0, 3.0, fail_after=3.0)
+    again, _ = _run_with_failures(cog, held_out_sg, None, 0, 25.0, fail_after=3.0)
+    assert [a for _, a in again].count("Communicate-Error") == 1, again
 
 
 @pytest.mark.parametrize("state", ["empty", "inverted"])
