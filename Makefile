@@ -60,7 +60,7 @@ partners: $(STAMP)
 	$(BIN)/assistbot report render/sweeps/partners
 
 # The field architecture against the state-machine baseline under degraded cues (scenarios/sweeps/dnf-vs-fsm/):
-# one sweep per perturbation, 684 episodes in all, each reported per agent. Hours on 2 cores; resumes.
+# one sweep per perturbation, 486 episodes in all, each reported per agent. Hours on 2 cores; resumes.
 DNF_VS_FSM := $(wildcard scenarios/sweeps/dnf-vs-fsm/*.yaml)
 dnf-vs-fsm: $(STAMP)
 	@for f in $(DNF_VS_FSM); do \
