@@ -60,14 +60,14 @@ partners: $(STAMP)
 	$(BIN)/assistbot report render/sweeps/partners
 
 # The field architecture against the state-machine baseline under degraded cues (scenarios/sweeps/dnf-vs-fsm/):
-# one sweep per perturbation, 486 episodes in all, each reported per agent. Hours on 2 cores; resumes.
+# one sweep per perturbation, 486 episodes in all, each reported per agent, then all of them side by side in
+# render/sweeps/dnf-vs-fsm/overview/. Hours on 2 cores; resumes.
 DNF_VS_FSM := $(wildcard scenarios/sweeps/dnf-vs-fsm/*.yaml)
 dnf-vs-fsm: $(STAMP)
 	@for f in $(DNF_VS_FSM); do \
-	  n=$$(basename $$f .yaml); \
 	  $(BIN)/assistbot sweep $$f --workers $(WORKERS) --no-progress || exit $$?; \
-	  $(BIN)/assistbot report render/sweeps/dnf-vs-fsm/$$n --by agent || exit $$?; \
 	done
+	$(BIN)/assistbot report $(patsubst scenarios/sweeps/%.yaml,render/sweeps/%,$(DNF_VS_FSM)) --by agent
 
 # Learning from the user, into render/learn/: the default person (the seed's Fig. 3-4 and Fig. 5, ten episodes
 # each learning in a row, each beside the same episode with the priors: learning changes nothing), then the

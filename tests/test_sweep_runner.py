@@ -204,6 +204,35 @@ def test_report_by_agent_splits_each_perturbation_by_agent(tmp_path):
         write_report(out, by="human.profile")
 
 
+def test_the_overview_puts_several_sweeps_side_by_side_by_agent(tmp_path):
+    """Two sweeps of one comparison (one per perturbation): one table each in overview.md, one column each in
+    overview.png; from the command line, several folders without --by are refused with exit 2."""
+    import subprocess
+    import sys
+
+    from assistbot.sweep.overview import write_overview
+
+    p = tmp_path / "tiny.yaml"
+    p.write_text(TINY)
+    dirs = []
+    for name, levels in (("late", "0,1"), ("later", "0,2")):
+        spec = SweepSpec(scenarios=[str(p)], seeds=1, perception="oracle",
+                         params=[Param.parse("agent", "dnf,fsm"), Param.parse("perturb.cue_delay", levels)])
+        dirs.append(tmp_path / name)
+        run_sweep(spec, dirs[-1], executor=AgentExecutor(), progress=False, log=lambda m: None)
+    md_path, png = write_overview(dirs, "agent", tmp_path / "overview")
+    md = md_path.read_text()
+    assert md.index("## late") < md.index("## later")
+    late, later = md.split("## later")
+    assert "| 1 | fsm | 1 | 0 | 0.00 |" in late and "| 2 | fsm |" not in late
+    assert "| 2 | fsm | 1 | 0 | 0.00 | [0.00, 0.79] | – | – | 2.00 |" in later and "| 0 | dnf | 1 | 1 | 1.00 |" in later
+    assert png.stat().st_size > 10_000
+    r = subprocess.run([sys.executable, "-m", "assistbot.cli", "report", *map(str, dirs)], capture_output=True, text=True)
+    assert r.returncode == 2 and "--by" in r.stderr and "Traceback" not in r.stderr
+    with pytest.raises(UserError, match="human.profile is not a swept parameter"):
+        write_overview(dirs, "human.profile", tmp_path / "o2")
+
+
 def test_a_results_folder_of_another_version_is_refused_with_the_reason(tmp_path):
     """Resuming into a folder whose results lack a column this version writes: said so, not a crash; the folder
     is left as it was."""
