@@ -61,7 +61,7 @@ partners: $(STAMP)
 
 # The field architecture against the state-machine baseline under degraded cues (scenarios/sweeps/dnf-vs-fsm/):
 # one sweep per perturbation, 486 episodes in all, each reported per agent, then all of them side by side in
-# render/sweeps/dnf-vs-fsm/overview/. Hours on 2 cores; resumes.
+# render/sweeps/dnf-vs-fsm/overview/. About 2 h on 2 cores; resumes.
 DNF_VS_FSM := $(wildcard scenarios/sweeps/dnf-vs-fsm/*.yaml)
 dnf-vs-fsm: $(STAMP)
 	@for f in $(DNF_VS_FSM); do \

@@ -36,9 +36,9 @@ def write_overview(results_dirs: list[str | Path], by: str, out: str | Path) -> 
             raise UserError(str(d), "--by", f"{by} is not a swept parameter there; its parameters: {', '.join(params)}")
         name = Path(d).stem if Path(d).suffix == ".csv" else Path(d).name
         factors = swept_factors(params, rows, by)
-        seeds = sorted({r["seed"] for r in rows if r.get("seed") is not None})
         scenarios = list(dict.fromkeys(r["scenario"] for r in rows))
-        md += [f"## {name}", "", f"{len(rows)} episodes: {len(scenarios)} scenarios, {len(seeds)} seed(s), "
+        seeds = max(len({r.get("seed") for r in rows if r["scenario"] == s}) for s in scenarios)
+        md += [f"## {name}", "", f"{len(rows)} episodes: {len(scenarios)} scenarios x {seeds} seed(s), "
                f"{' x '.join(factors) or '(nothing else varied)'} x {by}.", ""]
         for f in factors:
             md += _by_table(rows, f, by) + [""]
