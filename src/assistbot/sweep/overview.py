@@ -17,12 +17,7 @@ from pathlib import Path
 from typing import Any
 
 from assistbot.errors import UserError
-from assistbot.sweep.report import _by_table, _fmt_value, _key, _numeric, _ordered, load_results, table_rows
-
-
-def swept_factors(params: list[str], rows: list[dict[str, Any]], by: str) -> list[str]:
-    """The parameters of one sweep, other than ``by``, that take more than one value in its rows."""
-    return [p for p in params if p != by and len(_ordered([r.get(p) for r in rows])) > 1]
+from assistbot.sweep.report import _by_table, _fmt_value, _key, _numeric, _ordered, load_results, rate_errorbars, table_rows, varied_params
 
 
 def write_overview(results_dirs: list[str | Path], by: str, out: str | Path) -> list[Path]:
@@ -35,7 +30,7 @@ def write_overview(results_dirs: list[str | Path], by: str, out: str | Path) -> 
         if by not in params:
             raise UserError(str(d), "--by", f"{by} is not a swept parameter there; its parameters: {', '.join(params)}")
         name = Path(d).stem if Path(d).suffix == ".csv" else Path(d).name
-        factors = swept_factors(params, rows, by)
+        factors = varied_params(params, rows, skip=(by,))
         scenarios = list(dict.fromkeys(r["scenario"] for r in rows))
         seeds = max(len({r.get("seed") for r in rows if r["scenario"] == s}) for s in scenarios)
         md += [f"## {name}", "", f"{len(rows)} episodes: {len(scenarios)} scenarios x {seeds} seed(s), "
@@ -68,8 +63,7 @@ def _plot(panels: list[tuple[str, str, list[dict[str, Any]]]], by: str, path: Pa
         for b in _ordered([r.get(by) for r in rows]):
             cells = table_rows([r for r in rows if _key(r.get(by)) == _key(b)], factor)
             xs = [x_of[_key(v)] for v, _ in cells]
-            err = [[max(0.0, c.rate - c.rate_low) for _, c in cells], [max(0.0, c.rate_high - c.rate) for _, c in cells]]
-            top.errorbar(xs, [c.rate for _, c in cells], yerr=err, marker="o", capsize=3, label=f"{by} = {_fmt_value(b)}")
+            top.errorbar(xs, [c.rate for _, c in cells], yerr=rate_errorbars(cells), marker="o", capsize=3, label=f"{by} = {_fmt_value(b)}")
             bottom.plot(xs, [c.failed_mean for _, c in cells], marker="^", label=f"{by} = {_fmt_value(b)}")
         top.set_title(name, fontsize=10)
         top.set_ylim(-0.05, 1.05)

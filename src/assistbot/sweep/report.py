@@ -81,6 +81,16 @@ def _safe(path: str) -> str:
     return "".join(c if c.isalnum() or c in "._-" else "_" for c in path)
 
 
+def varied_params(params: list[str], rows: list[dict], skip: tuple[str, ...] = ()) -> list[str]:
+    """The swept parameters, but for ``skip``, that take more than one value in ``rows``."""
+    return [p for p in params if p not in skip and len(_ordered([r.get(p) for r in rows])) > 1]
+
+
+def rate_errorbars(cells: list[tuple[Any, Cell]]) -> list[list[float]]:
+    """Matplotlib's ``yerr`` for the success rates of ``cells``: the distances down and up to the Wilson bounds."""
+    return [[max(0.0, c.rate - c.rate_low) for _, c in cells], [max(0.0, c.rate_high - c.rate) for _, c in cells]]
+
+
 def table_rows(rows: list[dict], factor: str) -> list[tuple[Any, Cell]]:
     groups: dict[Any, list[dict]] = defaultdict(list)
     for r in rows:
@@ -139,8 +149,7 @@ def _plot_param(rows: list[dict], param: str, scenarios: list[str], path: Path, 
         cells = [(v, c) for v, c in table_rows(grp, param)]
         xs = [xs_of[v] for v, _ in cells]
         rate = [c.rate for _, c in cells]
-        err = [[max(0.0, c.rate - c.rate_low) for _, c in cells], [max(0.0, c.rate_high - c.rate) for _, c in cells]]
-        ax1.errorbar(xs, rate, yerr=err, marker="o", capsize=4, label=label if len(groups) > 1 else None)
+        ax1.errorbar(xs, rate, yerr=rate_errorbars(cells), marker="o", capsize=4, label=label if len(groups) > 1 else None)
         ttd = [(xs_of[v], c) for v, c in cells if not math.isnan(c.ttd_mean)]
         if ttd:
             tx = [x for x, _ in ttd]
@@ -408,7 +417,7 @@ def write_report(results_dir: str | Path, out: str | Path | None = None, expect:
     scenarios = list(dict.fromkeys(r["scenario"] for r in rows))
     # partners are many: the report splits them by attribute (`_partner_section`), not one row each
     factors = (["scenario"] if len(scenarios) > 1 else []) + [p for p in params if p != "human.partner"]
-    varied = [p for p in params if p != "human.partner" and len(_ordered([r.get(p) for r in rows])) > 1]
+    varied = varied_params(params, rows, skip=("human.partner",))
     written: list[Path] = []
     overall = Cell.of(rows)
     seeds = sorted({r["seed"] for r in rows if r.get("seed") is not None})
