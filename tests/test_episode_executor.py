@@ -113,3 +113,18 @@ def test_a_hand_reaching_or_closing_is_placed_and_a_resting_one_is_not(executor)
     assert executor._reaching_hand() is None
     executor.see(_percept(HandPercept("reach", (-0.1, -0.05, 0.2), seen=False)))
     assert executor._reaching_hand() is None
+
+
+def test_a_lost_frame_keeps_what_the_last_frame_showed(executor):
+    # a frame that saw nothing (dropped, or both cameras blocked) between frames showing the glass held
+    # out: the person still holds it out, and the robot reaches for where it was
+    held_out = HandPercept("grasp_ag", (-0.1, -0.03, 0.2), object_in_hand="glass", held_out=True)
+    executor.see(_percept(held_out))
+    lost = Percept(t=1.1, objects={"glass": ObjectPercept("glass", seen=False),
+                                   "bottle": ObjectPercept("bottle", seen=False)}, hand=HandPercept(seen=False))
+    executor.see(lost)
+    assert executor._human_holds("glass")
+    assert executor._target_xy("held_out") == (-0.12, -0.03)
+    # a frame that sees the hand empty ends it
+    executor.see(_percept(HandPercept("none", seen=True)))
+    assert not executor._human_holds("glass")

@@ -47,6 +47,12 @@ REACHING = ("reach", "grasp_ag", "grasp_sg")
 AFTER_USE = 3.0
 
 
+def lost_frame(percept: Percept) -> bool:
+    """A frame that saw neither the hand nor any object (a dropped frame, or the robot's own arm across
+    both cameras): it says nothing of the scene, not that the scene is empty."""
+    return not percept.hand.seen and not any(o.seen for o in percept.objects.values())
+
+
 class RobotExecutor:
     def __init__(self, world) -> None:
         self.world = world
@@ -267,6 +273,10 @@ class RobotExecutor:
         self.primitive.start(self._locate(aim))
 
     def see(self, percept: Percept) -> None:
+        if self._percept is not None and lost_frame(percept):
+            # the agent above carries what it saw across such frames; a primitive built on one would
+            # act on nothing (no hand holding out, no object): keep the last frame that saw something
+            return
         self._percept = percept
         h = percept.hand
         if h.seen and h.posture == "open_palm_request" and h.held_out:
