@@ -174,6 +174,13 @@ class RobotExecutor:
         still = 2 * int(near.sum()) > len(frames)
         return still or 2 * sum(h.held_out for h in frames) >= len(frames)
 
+    def _held_out(self) -> bool:
+        """Most of the frames of the last OFFER_WINDOW that show the person's hand show it held out toward the
+        robot: it has got there (a hand paused on its way, lifting what it holds first, is still and
+        `_offered`, but not held out)."""
+        frames = [h for _, h, _ in self._hand_seen]
+        return bool(frames) and 2 * sum(h.held_out for h in frames) > len(frames)
+
     def _hand_busy(self, obj: str | None) -> bool:
         """Most of the frames of the last OFFER_WINDOW that show the person's hand show it holding an object
         other than ``obj`` (one frame's misreading does not count); a hand read as holding an object that the
@@ -265,7 +272,7 @@ class RobotExecutor:
                              locate=self._locate, stopper_removed=self._stopper_removed,
                              lifted=lambda: self._lifted(aim), partner_hand=self._partner_hand,
                              identify=lambda: self._held_out_name, seen_elsewhere=self._seen_elsewhere,
-                             offered=self._offered, hand_busy=lambda: self._hand_busy(self.primitive.object),
+                             offered=self._offered, held_out=self._held_out, hand_busy=lambda: self._hand_busy(self.primitive.object),
                              seen_state=self._seen_state,
                              reaching_hand=self._reaching_hand)
         # hidden right now (often behind the robot's own arm): start from where it was last seen;

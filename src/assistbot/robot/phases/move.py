@@ -26,6 +26,19 @@ REACH_OUT_MARGIN = 0.005
 HANDOVER_X_SLACK = 0.01
 
 
+def unreachable(prim, goal: mink.SE3, name: str = "target") -> str:
+    """Why the hand cannot go to ``goal``: beyond the arm's reach, or deeper into the person's workspace than
+    the hand-over zone; "" when it can."""
+    dist = prim.robot.reach_distance(goal.translation())
+    if dist > REACH:
+        return (f"{name}: target {np.round(goal.translation(), 2).tolist()} out of reach "
+                f"({dist:.2f} m from the shoulder > {REACH:.2f} m)")
+    if goal.translation()[0] < TCP_MIN_X - HANDOVER_X_SLACK:
+        return (f"{name}: target x {goal.translation()[0]:.2f} m is beyond the hand-over zone "
+                f"(the hand may reach x >= {TCP_MIN_X:.2f} m)")
+    return ""
+
+
 class Move(Phase):
     """Minimum-jerk TCP motion from the current commanded pose to ``goal(prim)`` (re-read every tick).
 
@@ -60,19 +73,9 @@ class Move(Phase):
         pos[0] = max(pos[0], TCP_MIN_X)
         return poses.pose(goal.rotation(), pos)
 
-    def _unreachable(self, prim, goal: mink.SE3) -> str:
-        dist = prim.robot.reach_distance(goal.translation())
-        if dist > REACH:
-            return (f"{self.name}: target {np.round(goal.translation(), 2).tolist()} out of reach "
-                    f"({dist:.2f} m from the shoulder > {REACH:.2f} m)")
-        if goal.translation()[0] < TCP_MIN_X - HANDOVER_X_SLACK:
-            return (f"{self.name}: target x {goal.translation()[0]:.2f} m is beyond the hand-over zone "
-                    f"(the hand may reach x >= {TCP_MIN_X:.2f} m)")
-        return ""
-
     def tick(self, prim, dt, t):
         goal = self.goal(prim)
-        why = self._unreachable(prim, goal) if self.check_reach else ""
+        why = unreachable(prim, goal, self.name) if self.check_reach else ""
         if why and self.reach_out:
             self.waited += dt
             if self.waited >= REACH_WAIT:

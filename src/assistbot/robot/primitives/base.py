@@ -50,6 +50,7 @@ class Primitive:
                  identify: Callable[[], str | None] | None = None,
                  seen_elsewhere: Callable[[], bool] | None = None,
                  offered: Callable[[], bool] | None = None,
+                 held_out: Callable[[], bool] | None = None,
                  hand_busy: Callable[[], bool] | None = None,
                  seen_state: Callable[[str], str | None] | None = None,
                  reaching_hand: Callable[[], tuple[float, float, float] | None] | None = None) -> None:
@@ -70,6 +71,8 @@ class Primitive:
                              carries away from the hand: the grasp closed on something else.
           offered()          True while the person still holds the object out (not seen doing something
                              else with it, e.g. pouring); without perception: True.
+          held_out()         True while the person's hand is seen, steadily, held out toward the robot (not
+                             on its way there, not paused on the way); without perception: True.
           hand_busy()        True while the person's hand is seen, steadily, holding something other than
                              the object acted on: it is not free to take that; without perception: False.
           seen_state(name)   the state of object ``name`` ("inverted", "open", ...) as the cameras have
@@ -88,6 +91,7 @@ class Primitive:
         self.identify = identify or (lambda: None)
         self.seen_elsewhere = seen_elsewhere or (lambda: False)
         self.offered = offered or (lambda: True)
+        self.held_out = held_out or (lambda: True)
         self.hand_busy = hand_busy or (lambda: False)
         self.seen_state = seen_state or (lambda name: None)
         self.reaching_hand = reaching_hand or (lambda: None)

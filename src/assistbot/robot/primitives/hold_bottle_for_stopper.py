@@ -10,16 +10,18 @@ from assistbot.robot.primitives.geometry import LIFT, side_grasp_pose
 from assistbot.robot.primitives.handing_over import hold_out, waiting_for_the_person_to_let_go
 from assistbot.robot.primitives.places import free_rws_spot
 from assistbot.robot.primitives.putting_down import put_down_at
-from assistbot.robot.primitives.reaching import reach_and_grasp_phases, retract_phases
+from assistbot.robot.primitives.reaching import reach_and_grasp_phases, reachable_on_table, retract_phases
+from assistbot.robot.primitives.receive import OFFER_PATIENCE
 
 
 class HoldBottleForStopper(Primitive):
     """Grasp the closed bottle, hold it out upright near the middle line where the human can pull the
     stopper, keep it there until ``stopper_removed()`` (perception), put it back where it stood, let go.
 
-    A bottle seen in the HWS (target x < 0) is one the human holds out (``human_holds()``): the robot
-    grasps it at the human's hold-out height and waits until the human's hand lets go; or one the
-    human put down near the line: grasped from the table. Either way it is afterwards put down at a
+    A bottle seen in the HWS (target x < 0) is one the human holds out (``human_holds()``), or will hold
+    out (standing beyond the arm's reach): the robot reaches out for it at the human's hold-out height
+    and waits until the human's hand lets go; or one the human put down near the line: grasped from
+    the table. Either way it is afterwards put down at a
     free place in the RWS (`free_rws_spot`). The grip holds the bottle by friction against
     the pull; the world decides when the fit gives."""
 
@@ -45,8 +47,10 @@ class HoldBottleForStopper(Primitive):
                     "the stopper was not removed"),
             Wait("settle", 0.3),
         ]
-        if self.xy()[0] < 0.0 and not self.human_holds():
-            # standing on the person's side, put down there for the robot: from the table, back to the RWS
+        if self.xy()[0] < 0.0 and not self.human_holds() and reachable_on_table(self):
+            # standing on the person's side, put down there for the robot: from the table, back to the RWS.
+            # Beyond the arm's reach it is not the robot's to take from there: she is about to pick it
+            # up to hand it over (the fields decide on her reach for it), so the hand is held out for it
             return reach_and_grasp_phases(self) + [
                 RememberPlace(),
                 Move("lift", lambda p: side_grasp_pose(p, up=LIFT), duration=1.2),
@@ -55,7 +59,13 @@ class HoldBottleForStopper(Primitive):
                 *retract_phases(),
             ]
         if self.xy()[0] < 0.0:  # held out by the human
-            return reach_and_grasp_phases(self, held_up=True) + [
+            # decided while she picks it up: the hand waits above its workspace until she holds it out
+            # (there, and still), so that it does not meet the bottle on its way (her grip gives way to a knock)
+            reach = reach_and_grasp_phases(self, held_up=True)
+            k = next(i for i, ph in enumerate(reach) if ph.name == "above pre-grasp")
+            reach.insert(k, WaitFor("wait until it is held out", lambda p: p.held_out() and p.offered(), OFFER_PATIENCE,
+                                    "the person did not hold it out"))
+            return reach + [
                 Wait("hold", 1.5),
                 waiting_for_the_person_to_let_go(10.0),
                 *hold,

@@ -8,7 +8,7 @@ import mink
 import numpy as np
 
 from assistbot.robot import poses
-from assistbot.robot.phases import Grip, Move, Open, Phase, Rise, Unroll
+from assistbot.robot.phases import Grip, Move, Open, Phase, Rise, Unroll, unreachable
 from assistbot.robot.primitives.geometry import PRE_GRASP_BACK, side_grasp_pose
 
 if TYPE_CHECKING:
@@ -57,3 +57,12 @@ def reach_and_grasp_phases(prim: Primitive, height: float | None = None, held_up
              reach_out=held_up),
         Grip(True, "grasp"),
     ]
+
+
+def reachable_on_table(prim: Primitive, height: float | None = None) -> bool:
+    """The target, standing on the table where it is seen, can be grasped from there: every pose of the
+    reach (`reach_and_grasp_phases`) lies within the arm's reach and the hand-over zone."""
+    goals = (side_grasp_pose(prim, back=PRE_GRASP_BACK, up=0.10, height=height),
+             side_grasp_pose(prim, back=PRE_GRASP_BACK, up=0.0, height=height),
+             side_grasp_pose(prim, height=height))
+    return not any(unreachable(prim, g) for g in goals)
