@@ -7,9 +7,10 @@ from typing import TYPE_CHECKING
 import mink
 import numpy as np
 
+from assistbot import catalogue
 from assistbot.robot import poses
 from assistbot.robot.phases import Grip, Move, Open, Phase, Rise, Unroll, unreachable
-from assistbot.robot.primitives.geometry import PRE_GRASP_BACK, side_grasp_pose
+from assistbot.robot.primitives.geometry import GRASP_HEIGHT, PRE_GRASP_BACK, side_grasp_pose
 
 if TYPE_CHECKING:
     from assistbot.robot.primitives.base import Primitive
@@ -22,6 +23,10 @@ READY_POSE_POS = np.array([0.30, 0.05, 1.00])
 #: cameras' view of the table; waiting at the ready pose it hid what the robot had just set down in its
 #: workspace (benchmarks/arm_occlusion.py measures both)
 REST_POSE_POS = np.array([0.55, -0.20, 0.88])
+#: m above its grasp that the hand comes in at, before going down to the pre-grasp beside the object
+ABOVE_GRASP = 0.10
+#: m that the hand's lowest edge passes over the top of an object standing on the table on its way in
+TOP_CLEARANCE = 0.01
 
 
 def retract_phases(over_at: float | None = None) -> list[Phase]:
@@ -41,6 +46,18 @@ def retract_phases(over_at: float | None = None) -> list[Phase]:
             rest]
 
 
+def above_pre_grasp(p: Primitive, height: float | None = None, held_up: bool = False) -> mink.SE3:
+    """Where the hand comes in above the pre-grasp: ABOVE_GRASP over the grasp, and for an object standing
+    on the table at least so high that the hand's lowest edge (`Gripper.reach_below`) passes TOP_CLEARANCE
+    over the object's top: turning from the ready pose toward an object standing near it, the open
+    fingers sweep round at that height (a bottle's neck stands higher than the hand's usual approach)."""
+    up = ABOVE_GRASP
+    if not held_up and p.object in GRASP_HEIGHT and p.object != "held_out":
+        h = height if height is not None else GRASP_HEIGHT[p.object]
+        up = max(up, catalogue.height(p.object) + p.robot.gripper.reach_below + TOP_CLEARANCE - h)
+    return side_grasp_pose(p, back=PRE_GRASP_BACK, up=up, height=height, held_up=held_up)
+
+
 def reach_and_grasp_phases(prim: Primitive, height: float | None = None, held_up: bool = False) -> list[Phase]:
     """Reach and grasp the target from the side: standing on the table, or ``held_up`` by the person (the
     hand then reaches out for it as far as it can, and waits for it there: `Move.reach_out`)."""
@@ -49,7 +66,7 @@ def reach_and_grasp_phases(prim: Primitive, height: float | None = None, held_up
         Rise("rise", READY_POSE_POS[2]),
         Unroll(),
         Move("ready", lambda p: poses.pose(mink.SO3.identity(), READY_POSE_POS), duration=1.2, tolerance=0.04),
-        Move("above pre-grasp", lambda p: side_grasp_pose(p, back=PRE_GRASP_BACK, up=0.10, height=height, held_up=held_up), duration=1.5,
+        Move("above pre-grasp", lambda p: above_pre_grasp(p, height, held_up), duration=1.5,
              reach_out=held_up),
         Move("pre-grasp", lambda p: side_grasp_pose(p, back=PRE_GRASP_BACK, up=0.0, height=height, held_up=held_up), duration=0.8,
              reach_out=held_up),
@@ -62,7 +79,7 @@ def reach_and_grasp_phases(prim: Primitive, height: float | None = None, held_up
 def reachable_on_table(prim: Primitive, height: float | None = None) -> bool:
     """The target, standing on the table where it is seen, can be grasped from there: every pose of the
     reach (`reach_and_grasp_phases`) lies within the arm's reach and the hand-over zone."""
-    goals = (side_grasp_pose(prim, back=PRE_GRASP_BACK, up=0.10, height=height),
+    goals = (above_pre_grasp(prim, height),
              side_grasp_pose(prim, back=PRE_GRASP_BACK, up=0.0, height=height),
              side_grasp_pose(prim, height=height))
     return not any(unreachable(prim, g) for g in goals)
