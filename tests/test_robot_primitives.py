@@ -8,6 +8,7 @@ Targets come from ground truth here (a stand-in for perception).
 from __future__ import annotations
 
 import mink
+import mujoco
 import numpy as np
 import pytest
 
@@ -16,7 +17,7 @@ from assistbot.robot import primitives as P
 from assistbot.robot.actions import ACTION_PRIMITIVES, MOTIONS
 from assistbot.robot.controller import HANDOVER_DEPTH, RobotController
 from assistbot.robot.primitives import Status
-from assistbot.robot.primitives.reaching import REST_POSE_POS
+from assistbot.robot.primitives.reaching import REST_POSE_POS, TOP_CLEARANCE
 from assistbot.robot.sim import CONTROL_DT, body_lift, body_xy, run
 from assistbot.task.drinking import ROBOT_ACTIONS
 from assistbot.world import Arrangement, build_world
@@ -79,7 +80,8 @@ def test_place_in_rws_puts_the_object_down_upright_at_the_spot(obj, start, spot)
     assert_safe(s)
 
 
-@pytest.mark.parametrize("bottle, glass", [("0.20,0.12", "0.20,-0.12"), ("0.12,-0.20", "0.24,0.05")])
+# the third: the bottle where the robot puts it down after holding it for the stopper, near the ready pose
+@pytest.mark.parametrize("bottle, glass", [("0.20,0.12", "0.20,-0.12"), ("0.12,-0.20", "0.24,0.05"), ("0.26,-0.05", "0.13,0.167")])
 def test_pour_fills_the_upright_glass(bottle, glass):
     w, robot = make(f"RWS:open@{bottle}", f"RWS:empty@{glass}")
     prim = P.Pour(robot, "bottle", locate=lambda name: body_xy(w, name)())
@@ -92,6 +94,25 @@ def test_pour_fills_the_upright_glass(bottle, glass):
     assert upright(w, "glass") and upright(w, "bottle")
     assert w.state().objects["bottle"].zone == "RWS"
     assert_safe(s)
+
+
+def test_the_open_hand_turning_toward_a_bottle_near_the_ready_pose_passes_over_its_neck():
+    # where the robot puts the bottle down after holding it for the stopper: the fingers, turning toward
+    # it from the ready pose, sweep round at the height of its neck unless the hand comes in high enough
+    w, robot = make("RWS:open@0.26,-0.05", "RWS:empty@0.13,0.167")
+    m, d = w.model, w.data
+    prim = P.Pour(robot, "bottle", locate=lambda name: body_xy(w, name)())
+    hand = [g for g in range(m.ngeom) if m.body(m.geom_bodyid[g]).name.startswith("robot_f") or m.geom(g).name == "robot_palm"]
+    bottle = [g for g in range(m.ngeom) if m.geom_bodyid[g] == w.body_id["bottle"]]
+    nearest = []
+
+    def tick(t):
+        if prim.progress.phase in ("ready", "above pre-grasp"):
+            nearest.append(min(mujoco.mj_geomDistance(m, d, a, b, 0.2, None) for a in hand for b in bottle))
+
+    run(w, prim, body_xy(w, "bottle"), each_tick=tick, seconds=5.0)
+    assert nearest and min(nearest) >= TOP_CLEARANCE - 0.002, min(nearest)
+    assert upright(w, "bottle")
 
 
 def test_pour_without_a_seen_glass_fails_with_a_reason():
