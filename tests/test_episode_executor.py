@@ -65,6 +65,16 @@ def test_a_still_hand_whose_posture_flickers_still_holds_out(executor):
     assert executor._offered()
 
 
+def test_a_hand_paused_on_its_way_is_still_but_not_yet_held_out(executor):
+    # she has lifted the bottle at her side and pauses before holding it out: still (offered), but the robot's
+    # hand must not set off toward it yet (`HoldBottleForStopper` waits for held_out)
+    paused = [HandPercept("grasp_ag", (-0.24, -0.16, 0.1), object_in_hand="bottle", held_out=False)] * 10
+    _frames(executor, paused)
+    assert executor._offered() and not executor._held_out()
+    _frames(executor, [HandPercept("grasp_ag", (-0.06, -0.03, 0.2), object_in_hand="bottle", held_out=True)] * 10)
+    assert executor._offered() and executor._held_out()
+
+
 def test_a_hand_drawing_back_no_longer_holds_out(executor):
     hands = [_hand("reach", -0.10 - 0.02 * k, -0.10 - 0.02 * k, held_out=False) for k in range(10)]
     _frames(executor, hands)

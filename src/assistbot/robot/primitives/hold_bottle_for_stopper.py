@@ -21,9 +21,8 @@ class HoldBottleForStopper(Primitive):
     A bottle seen in the HWS (target x < 0) is one the human holds out (``human_holds()``), or will hold
     out (standing beyond the arm's reach): the robot reaches out for it at the human's hold-out height
     and waits until the human's hand lets go; or one the human put down near the line: grasped from
-    the table. Either way it is afterwards put down at a
-    free place in the RWS (`free_rws_spot`). The grip holds the bottle by friction against
-    the pull; the world decides when the fit gives."""
+    the table. Either way it is afterwards put down at a free place in the RWS (`free_rws_spot`). The grip
+    holds the bottle by friction against the pull; the world decides when the fit gives."""
 
     name = "hold_bottle_for_stopper"
     HOLD_XY = (-0.045, -0.02)
