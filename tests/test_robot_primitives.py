@@ -195,9 +195,9 @@ def test_the_scripted_human_pulls_the_stopper_off_the_bottle_the_robot_holds():
     assert_safe(s)
 
 
-def test_bottle_held_out_by_the_human_is_taken_and_held_for_the_stopper():
-    w, robot = make("HWS:closed@-0.22,-0.12", "RWS:empty")
-    human = _holding_out(w, "bottle")
+def _taken_from_her_and_held_for_the_stopper(w, robot, human):
+    """The robot takes the bottle from the person's hand (HoldBottleForStopper, built now), a stand-in hand
+    pulls the stopper while it holds it, and it ends opened, upright, in the RWS."""
     prim = P.HoldBottleForStopper(robot, human_holds=lambda: w.human_holding() == "bottle",
                                   stopper_removed=lambda: not w.data.eq_active[w.eq_stopper], lifted=body_lift(w, "bottle"),
                                   locate=lambda name: body_xy(w, name)())
@@ -214,6 +214,11 @@ def test_bottle_held_out_by_the_human_is_taken_and_held_for_the_stopper():
     st = w.state()
     assert st.bottle_open and st.objects["bottle"].zone == "RWS" and upright(w, "bottle"), st.summary()
     assert_safe(s)
+
+
+def test_bottle_held_out_by_the_human_is_taken_and_held_for_the_stopper():
+    w, robot = make("HWS:closed@-0.22,-0.12", "RWS:empty")
+    _taken_from_her_and_held_for_the_stopper(w, robot, _holding_out(w, "bottle"))
 
 
 def test_bottle_beyond_reach_that_the_human_is_about_to_hold_out_is_waited_for():
@@ -222,23 +227,8 @@ def test_bottle_beyond_reach_that_the_human_is_about_to_hold_out_is_waited_for()
     w, robot = make("HWS:closed@-0.22,-0.12", "RWS:empty")
     human = HumanController(w, "passive")
     human.start("hand_to_robot", object="bottle", grip="ag")
-    prim = P.HoldBottleForStopper(robot, human_holds=lambda: w.human_holding() == "bottle",
-                                  stopper_removed=lambda: not w.data.eq_active[w.eq_stopper], lifted=body_lift(w, "bottle"),
-                                  locate=lambda name: body_xy(w, name)())
     assert w.human_holding() is None
-    stopper = w.model.body("stopper").id
-
-    def tick(t):
-        on = prim.progress.phase == "hold steady for the stopper" and w.data.eq_active[w.eq_stopper]
-        w.data.xfrc_applied[stopper, 2] = 15.0 if on else 0.0  # a stand-in hand pulls the stopper
-        human.tick(t)
-
-    pr, s = run(w, prim, body_xy(w, "bottle"), each_tick=tick)
-    assert pr.status is Status.SUCCEEDED, pr.reason
-    settle(w, 0.5, human)
-    st = w.state()
-    assert st.bottle_open and st.objects["bottle"].zone == "RWS" and upright(w, "bottle"), st.summary()
-    assert_safe(s)
+    _taken_from_her_and_held_for_the_stopper(w, robot, human)
 
 
 def test_stopper_hold_times_out_with_a_reason():
