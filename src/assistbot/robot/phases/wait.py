@@ -35,3 +35,14 @@ class WaitFor(Phase):
         if t >= self.timeout:
             return Status.FAILED, f"{self.name}: {self.reason} within {self.timeout:.0f} s"
         return Status.RUNNING, ""
+
+
+class WaitUpTo(Phase):
+    """Hold still until ``condition(prim)`` is true, or for at most ``seconds``: then go on either way."""
+
+    def __init__(self, name: str, condition: Callable[["Primitive"], bool], seconds: float) -> None:
+        self.name, self.condition, self.seconds, self.timeout = name, condition, seconds, seconds + 1.0
+
+    def tick(self, prim, dt, t):
+        prim.robot.hold()
+        return (Status.SUCCEEDED, "") if self.condition(prim) or t >= self.seconds else (Status.RUNNING, "")

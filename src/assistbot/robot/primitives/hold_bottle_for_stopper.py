@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from assistbot.robot.phases import Move, RememberPlace, Wait, WaitFor
+from assistbot.robot.phases import Move, RememberPlace, Wait, WaitFor, WaitUpTo
 from assistbot.robot.primitives.base import Primitive
 from assistbot.robot.primitives.geometry import LIFT, side_grasp_pose
 from assistbot.robot.primitives.handing_over import hold_out, waiting_for_the_person_to_let_go
@@ -59,11 +59,12 @@ class HoldBottleForStopper(Primitive):
             ]
         if self.xy()[0] < 0.0:  # held out by the human
             # decided while she picks it up: the hand waits above its workspace until she holds it out
-            # (there, and still), so that it does not meet the bottle on its way (her grip gives way to a knock)
+            # (there, and still), so that it does not meet the bottle on its way (her grip gives way to a
+            # knock); a hand still short of the hand-over zone is reached out to after OFFER_PATIENCE s (she
+            # brings what she holds into the open hand held out for it)
             reach = reach_and_grasp_phases(self, held_up=True)
             k = next(i for i, ph in enumerate(reach) if ph.name == "above pre-grasp")
-            reach.insert(k, WaitFor("wait until it is held out", lambda p: p.held_out() and p.offered(), OFFER_PATIENCE,
-                                    "the person did not hold it out"))
+            reach.insert(k, WaitUpTo("wait until it is held out", lambda p: p.held_out() and p.offered(), OFFER_PATIENCE))
             return reach + [
                 Wait("hold", 1.5),
                 waiting_for_the_person_to_let_go(10.0),
