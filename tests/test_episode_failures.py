@@ -86,3 +86,31 @@ def test_without_the_mismatch_there_is_no_alternative(mechanism):
     ep.actor = FailingExecutor(ep.world, "Receive-object", 2)
     r = ep.run()
     assert "Take-from-table" not in [a for _, a in r.decisions]
+
+
+HOLD_OUT_BOTTLE = {"name": "hold-fails", "seed": 0, "time_limit": 200,
+                   "objects": {"bottle": {"zone": "HWS", "state": "closed"}, "glass": {"zone": "RWS", "state": "empty"}},
+                   "human": {"profile": "passive"}}
+
+
+def test_two_failures_to_take_the_bottle_held_out_for_the_stopper_bring_the_table_hand_over():
+    # the bottle she holds out to be held for the stopper, taken from her hand twice in vain (beyond the
+    # arm's reach, say): the same mismatch as any take from the hand, and the same way round it
+    ep = build_episode(parse_scenario(HOLD_OUT_BOTTLE), perception="oracle")
+    ep.actor = FailingExecutor(ep.world, "Grasp-hold-bottle-to-remove-cup", 2)
+    r = ep.run()
+    decisions = [a for _, a in r.decisions]
+    i = [k for k, a in enumerate(decisions) if a == "Grasp-hold-bottle-to-remove-cup"]
+    assert len(i) >= 2 and "Take-from-table" in decisions, decisions
+    alt = decisions.index("Take-from-table")
+    assert i[1] < alt and decisions[i[1] + 1:alt].count("Grasp-hold-bottle-to-remove-cup") == 0, decisions
+    said = [u for u in r.utterances if u["source"] == "AML:Cannot-take-it-from-the-hand"]
+    assert said, [u["source"] for u in r.utterances]
+    took = [a for a in r.actions if a["action"] == "Take-from-table"]
+    assert took and took[0]["status"] == "succeeded", r.actions
+    # then held for the stopper from the robot's side (the stopper comes off in its hand, not knocked off on
+    # the way to the table under it), and the task goes on
+    assert decisions[alt + 1:].count("Grasp-hold-bottle-to-remove-cup") >= 1, decisions
+    opened = [e for e in r.world_events if e["event"] == "stopper_removed"]
+    assert opened and opened[0]["robot_holds"] == "bottle", opened
+    assert r.success, (r.end_reason, decisions)

@@ -58,6 +58,8 @@ SHORT_TRIES = 3
 TAKEN_Z = 0.90
 #: the farthest table x at which the person sets an object down under the robot's hand
 UNDER_ROBOT_X_MAX = -0.045
+#: m below the robot's hand, as the person sees it, that the top of what she sets down under it stays
+UNDER_ROBOT_CLEARANCE = 0.08
 #: a resting place of the hand near the body
 REST = np.array([-0.34, -0.17, 0.86])
 LIFT = 0.07                       # m lifted after a grasp
@@ -348,14 +350,27 @@ def own_side_spot(c, held: str) -> np.ndarray:
     return spots[pick].copy()
 
 
-def put_down(c, object: str | None = None, at: tuple[float, float] | None = None) -> Gen:
+def _top(c, obj: str) -> float:
+    """World z of the top of ``obj`` held about upright (the stopper on a closed bottle included)."""
+    closed = obj == "bottle" and bool(c.world.data.eq_active[c.world.eq_stopper])
+    return float(_center_base(c, obj)[2]) + catalogue.height(obj) + (layout.STOPPER_HEIGHT if closed else 0.0)
+
+
+def put_down(c, object: str | None = None, at: tuple[float, float] | None = None,
+             under: float | None = None) -> Gen:
     """Put the object in hand down upright at table spot `at` (default: where it is, or, held out near the
     middle line, at a free place on this side: `own_side_spot`), let go, withdraw. An object held tilted
     (a pour given up half way, a grip closed at the edge of the arm's reach) is turned upright on the way,
-    or upside down if it is held more so: set down on its edge it would fall over."""
+    or upside down if it is held more so: set down on its edge it would fall over. ``under`` (world z):
+    something held above the spot (the robot's hand showing it) that the object's top must pass below,
+    so it is first lowered where it is, then brought in."""
     held = c.world.human_holding()
     if held is None or (object is not None and held != object):
         return False, "nothing in hand to put down"
+    if under is not None and _top(c, held) > under:
+        hand, R = c.arm.hand_pose()
+        low = max(under - _top(c, held), layout.TABLE_Z + 0.01 - float(_center_base(c, held)[2]))
+        yield from _move_straight(c, hand + np.array([0.0, 0.0, min(0.0, low)]), R)
     base = _center_base(c, held)
     hand, R = c.arm.hand_pose()
     a = _axis(c, held)
@@ -401,7 +416,8 @@ def put_down_for_robot(c) -> Gen:
     tcp = yield from _robot_hand_still(c, lambda v: v.requests, MEET_STILL, 15.0)
     if tcp is None:
         return False, "the robot showed no place"
-    return (yield from put_down(c, held, at=(min(float(tcp[0]), UNDER_ROBOT_X_MAX), float(tcp[1]))))
+    return (yield from put_down(c, held, at=(min(float(tcp[0]), UNDER_ROBOT_X_MAX), float(tcp[1])),
+                                under=float(tcp[2]) - UNDER_ROBOT_CLEARANCE))
 
 
 def hand_to_robot(c, object: str, grip: str | None = None, timeout: float = 40.0) -> Gen:

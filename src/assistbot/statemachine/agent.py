@@ -27,7 +27,7 @@ from assistbot.cognition.percept import Decision, Percept, Said
 from assistbot.errors import UserError
 from assistbot.statemachine import rules
 from assistbot.statemachine.memory import Memory
-from assistbot.task import FALLS, ROBOT_ACTION_BY_NAME, UTTERANCES
+from assistbot.task import FAILURE_OF, FALLS, ROBOT_ACTION_BY_NAME, UTTERANCES
 
 #: the partner responses (`RobotAction.response`) that come after the robot's action has ended -- the person
 #: hands over what was asked for, drinks when told -- rather than during it (taking what the robot holds
@@ -193,7 +193,7 @@ class StateMachineAgent:
         key = (action, self._situation())
         if self.failures.get(key, 0) < self.config.max_failures:
             return action, None
-        if action == "Receive-object":
+        if FAILURE_OF.get(action) == "Cannot-take-it-from-the-hand":
             if key not in self.gave_up:
                 self.gave_up.add(key)
                 said.append(_say(t, "AML", "Cannot-take-it-from-the-hand"))

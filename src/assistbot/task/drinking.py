@@ -311,7 +311,8 @@ ROBOT_ACTIONS: tuple[RobotAction, ...] = (
     RobotAction("Grasp-hold-bottle-to-remove-cup", "bottle", "grasp_hold_bottle",
                 intentions={"Remove-stopper": 1.6, "Get-bottle": -1.0},
                 objects={"bottle_closed_RWS": 1.2, "bottle_closed_HWS": 0.6},
-                present={"Open-bottle": 1.0}, errors={"Cannot-remove-stopper": -3.0}, initiative=1.0,
+                present={"Open-bottle": 1.0}, errors={"Cannot-remove-stopper": -3.0},
+                failures={"Cannot-take-it-from-the-hand": -4.0}, initiative=1.0,
                 requires={"bottle_state": ("closed",), "bottle_zone": ("RWS", "held_out")},
                 effects={"bottle_state": "open", "bottle_zone": "RWS"}, response="remove_stopper"),
     RobotAction("Reach-and-turn-glass", "glass", "turn_glass",
@@ -399,7 +400,10 @@ ROBOT_ACTION_BY_NAME: dict[str, RobotAction] = {a.name: a for a in ROBOT_ACTIONS
 #: the actions that move the robot and so can fail physically: the items of the action failure layer (AFL)
 MOTION_ACTIONS: tuple[str, ...] = tuple(a.name for a in ROBOT_ACTIONS if a.moves)
 #: motion action -> the AML mismatch (`ACTION_FAILURES`) its repeated failure raises
-FAILURE_OF: dict[str, str] = {a: ("Cannot-take-it-from-the-hand" if a == "Receive-object" else "Keeps-failing")
+#: the actions that take an object from the person's hand (the bottle she holds out to be held for the
+#: stopper, too): failing that twice has an alternative, the hand-over by the table (Take-from-table)
+TAKES_FROM_THE_HAND: tuple[str, ...] = ("Receive-object", "Grasp-hold-bottle-to-remove-cup")
+FAILURE_OF: dict[str, str] = {a: ("Cannot-take-it-from-the-hand" if a in TAKES_FROM_THE_HAND else "Keeps-failing")
                               for a in MOTION_ACTIONS}
 
 #: what the human can do on his own initiative (an active partner only), for the coverage check.

@@ -12,7 +12,7 @@ from assistbot.robot.primitives.base import Primitive
 from assistbot.robot.primitives.geometry import GRASP_HEIGHT, LIFT, PRE_GRASP_BACK, grasp_pose_at, side_grasp_pose
 from assistbot.robot.primitives.places import HOLD_OUT_XY, SHARED_REACH, free_rws_spot
 from assistbot.robot.primitives.putting_down import put_down_at
-from assistbot.robot.primitives.reaching import READY_POSE_POS, retract_phases
+from assistbot.robot.primitives.reaching import READY_POSE_POS, TALLEST, retract_phases
 from assistbot.task import OBJECTS
 from assistbot.world.layout import TABLE_Z
 
@@ -25,8 +25,9 @@ class TakeFromTable(Primitive):
     ``obj`` is None: which object it is follows from what perception sees set down under the hand."""
 
     name = "take_from_table"
-    #: how high (m above the table) the open hand shows the spot: above the bottle with its stopper
-    SHOW_HEIGHT = 0.30
+    #: m between the hand showing the spot and the top of the tallest object (the bottle with its stopper):
+    #: room for the person to bring what she holds in under the hand
+    SHOW_ROOM = 0.10
     #: an object seen standing this close (m) to the spot has been set down there
     PLACED_NEAR = 0.09
     #: the spot keeps clear of the objects seen standing at table x (m) beyond this: the RWS and the
@@ -59,7 +60,7 @@ class TakeFromTable(Primitive):
 
     def phases(self):
         def show(p, back=0.0, up=None):
-            c = np.array([p.spot[0], p.spot[1], TABLE_Z + (self.SHOW_HEIGHT if up is None else up)])
+            c = np.array([p.spot[0], p.spot[1], TABLE_Z + (self.show_height() if up is None else up)])
             return grasp_pose_at(p, c, "glass", back=back)
 
         def grasp_at(p, back=0.0, up=0.0):
@@ -77,6 +78,11 @@ class TakeFromTable(Primitive):
             *put_down_at(lambda p: p._home()),
             *retract_phases(),
         ]
+
+    def show_height(self) -> float:
+        """How high (m above the table) the open hand shows the spot: its lowest edge SHOW_ROOM above the
+        top of the tallest object."""
+        return TALLEST + self.robot.gripper.reach_below + self.SHOW_ROOM
 
     def _home(self) -> np.ndarray:
         """Where the object taken goes: a free spot in the RWS (chosen once)."""
