@@ -3,9 +3,10 @@
 The arm goes to every hand-over along the corridor from its shoulder to the hand-over place
 (seen from above: the segment from the shoulder to the place where it holds objects out and
 takes them). An object set down in that corridor is in the way of the next hand-over: the
-forearm, coming down to a held-out object, sweeps it over. So a put-down spot is chosen on a
+forearm, coming down to a held-out object, sweeps it over; the same holds for the other ways the
+hand passes low over the table (from the ready pose down to rest). So a put-down spot is chosen on a
 grid of the robot's half of the table, within the arm's comfortable reach: of the spots that
-keep CORRIDOR_CLEAR from the corridor and OBJECT_CLEAR from the objects standing there, the one
+keep CORRIDOR_CLEAR from those ways and OBJECT_CLEAR from the objects standing there, the one
 nearest the middle of the robot's half (where the cameras see best and every motion has room);
 if none does, the one with the most clearance.
 """
@@ -44,17 +45,22 @@ def candidate_spots() -> np.ndarray:
     return np.array([(x, y) for x in xs for y in ys])
 
 
-def put_down_spot(shoulder: np.ndarray, reach: float, handover_xy, standing: Iterable, grasp_height: float) -> np.ndarray:
+def put_down_spot(shoulder: np.ndarray, reach: float, handover_xy, standing: Iterable, grasp_height: float,
+                  ways: Iterable = ()) -> np.ndarray:
     """The spot (table x, y) for an object held at ``grasp_height`` above its base.
 
     ``shoulder``: the arm's shoulder (world, m); ``reach``: its reach (m); ``handover_xy``: the
-    hand-over place (table x, y); ``standing``: the table x, y of the objects standing in the way."""
+    hand-over place (table x, y); ``standing``: the table x, y of the objects standing in the way;
+    ``ways``: other segments (a, b; table x, y) the hand passes along low over the table, kept
+    CORRIDOR_CLEAR like the corridor."""
     c = candidate_spots()
     grasp = np.column_stack([c, np.full(len(c), layout.TABLE_Z + grasp_height)])
     ok = np.linalg.norm(grasp - np.asarray(shoulder, float), axis=1) <= reach - REACH_MARGIN
     c = c[ok]
     sh = np.asarray(shoulder, float)[:2]
     clear = segment_distance(c, sh, np.asarray(handover_xy, float)) - CORRIDOR_CLEAR
+    for a, b in ways:
+        clear = np.minimum(clear, segment_distance(c, np.asarray(a, float)[:2], np.asarray(b, float)[:2]) - CORRIDOR_CLEAR)
     for o in standing:
         clear = np.minimum(clear, np.linalg.norm(c - np.asarray(o, float)[:2], axis=1) - OBJECT_CLEAR)
     if not (clear >= 0).any():

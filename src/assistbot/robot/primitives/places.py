@@ -12,6 +12,7 @@ from assistbot.robot import poses
 from assistbot.robot.controller import REACH, TCP_MIN_X
 from assistbot.robot.placement import put_down_spot
 from assistbot.robot.primitives.geometry import GRASP_HEIGHT, REACH_SLACK, held_centre
+from assistbot.robot.primitives.reaching import READY_POSE_POS, REST_POSE_POS
 from assistbot.task import OBJECTS
 from assistbot.world.layout import TABLE_Z
 
@@ -22,6 +23,10 @@ if TYPE_CHECKING:
 #: the farthest a spot shared with the person may lie (m from the shoulder, at grasp height): just beyond
 #: REACH, within the slack, since the person's arm stops at the middle line
 SHARED_REACH = REACH + REACH_SLACK - 0.012
+#: the way (table x, y, from and to) the hand goes down from the ready pose to rest after every action, its
+#: open fingers pointing at the table: what the robot sets down there is swept over (partner 1070, a bottle
+#: set down 11 cm from the ready pose)
+TO_REST = (READY_POSE_POS[:2], REST_POSE_POS[:2])
 #: where an object is held out for the human to take: its centre (table x, y) and its base height above the table
 HOLD_OUT_XY = (-0.04, -0.04)
 HOLD_OUT_BASE = 0.11
@@ -98,7 +103,9 @@ def meet_goal(prim: "Primitive", hand) -> mink.SE3 | None:
 
 def free_rws_spot(p: "Primitive") -> np.ndarray:
     """Where to put the object in the hand down in the RWS (`placement.put_down_spot`): clear of the
-    corridor to the hand-over place and of the other objects seen standing in the RWS (``p.locate``)."""
+    corridor to the hand-over place, of the way the hand goes down from the ready pose to rest, and of the
+    other objects seen standing in the RWS (``p.locate``)."""
     standing = [np.asarray(xy, float) for xy in (p.locate(n) for n in OBJECTS if n != p.object)
                 if xy is not None and xy[0] > 0.0]
-    return put_down_spot(p.robot.shoulder, REACH, HOLD_OUT_XY, standing, GRASP_HEIGHT.get(p.object, GRASP_HEIGHT["held_out"]))
+    return put_down_spot(p.robot.shoulder, REACH, HOLD_OUT_XY, standing, GRASP_HEIGHT.get(p.object, GRASP_HEIGHT["held_out"]),
+                         ways=(TO_REST,))
