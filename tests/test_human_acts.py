@@ -525,3 +525,20 @@ def test_a_person_pours_from_above_where_their_arm_can_tip_the_bottle_and_spills
         assert ends[-1].kind == "failed" and ends[-1].detail["reason"] == "could not hold the bottle over the glass", ends
         assert st.liquid.in_bottle >= 0.95 * st.liquid.total, st.summary()
     assert w.data.xmat[w.body_id["bottle"]][8] > 0.99 and st.human_holds is None
+
+
+def test_asked_to_set_it_down_with_an_empty_hand_she_fetches_what_she_was_handing_over():
+    # a hand-over of hers that failed (the robot could not take the glass from her hand) left the glass on
+    # her side; the robot then shows a spot and asks her to set "it" down there: she fetches the glass
+    w, s, hc = _setup(_arr({"zone": "RWS", "state": "closed"}, {"zone": "HWS", "state": "empty"}))
+    hc.policy_state["offered"] = "glass"          # as `hand_to_robot` leaves it
+    spot = (-0.06, 0.0)
+    s.place((spot[0], spot[1], layout.TABLE_Z + 0.30))      # the robot's open hand held above the spot
+    hc.run(1.0, robot=s.tick)
+    assert hc.events("start") == []                  # the sight alone is no request
+    hc.hear("request:put_down_here", w.time)
+    _ok(_run_until_done(hc, s, 40.0, "put_down_for_robot"), "put_down_for_robot")
+    assert [e.what for e in hc.events("start")] == ["grasp", "put_down_for_robot"]
+    g = w.data.xpos[w.body_id["glass"]]
+    assert w.state().human_holds is None and w.state().objects["glass"].upright
+    assert np.hypot(g[0] - spot[0], g[1] - spot[1]) < 0.05, g

@@ -422,6 +422,7 @@ def put_down_for_robot(c) -> Gen:
 
 def hand_to_robot(c, object: str, grip: str | None = None, timeout: float = 40.0) -> Gen:
     """Grasp `object` (if not in hand), hold it out, and let go once the robot holds it."""
+    c.policy_state["offered"] = object      # what "it" means if the robot then asks her to set it down
     if c.world.human_holding() != object:
         ok, why = yield from grasp(c, object, grip or c.profile.grip)
         if not ok:
