@@ -37,6 +37,18 @@ def test_geometry_is_the_compiled_scenes(scene, name):
             catalogue.height(name)
 
 
+def test_the_top_of_a_closed_bottle_is_its_stoppers_cap_in_the_physics():
+    # one home for "how tall does it stand": the robot's obstacles and clearances, the person's carrying
+    w = build_world(Arrangement.from_options("RWS:closed", "HWS:empty"))
+    m, d = w.model, w.data
+    mujoco.mj_forward(m, d)
+    cap = m.geom("stopper_cap").id
+    cap_top = d.geom_xpos[cap][2] + m.geom_size[cap][1]
+    assert catalogue.top("bottle") == pytest.approx(cap_top - d.xpos[w.body_id["bottle"]][2], abs=1e-6)
+    assert catalogue.top("bottle", fitted=False) == catalogue.height("bottle") < catalogue.top("bottle")
+    assert catalogue.top("glass") == catalogue.height("glass")
+
+
 @pytest.mark.parametrize("name", catalogue.NAMES)
 def test_every_object_is_in_the_scene_and_in_vision(scene, name):
     o = catalogue.BY_NAME[name]

@@ -6,7 +6,7 @@ an object's name, its states (the first is the default), its MJCF body and sites
 (the bottle's stopper), the colour class vision segments it by, and whether it is a task
 object: placed by a scenario's arrangement, perceived, reasoned about, taken and handed over.
 
-The geometry (`radius`, `height`, `grasp_height`) is read from the MJCF model that holds it
+The geometry (`radius`, `height`, `top`, `grasp_height`) is read from the MJCF model that holds it
 (assets/mjcf/objects.xml compiles on its own), once, on first use: importing this module
 costs nothing. A new object needs its entry here and its bodies, sites and welds in the MJCF.
 """
@@ -79,6 +79,26 @@ def height(name: str) -> float:
     if site is None:
         raise ValueError(f"the {name} has no top site")
     return float(_model().site(site).pos[2])
+
+
+@cache
+def top(name: str, fitted: bool = True) -> float:
+    """Base to the top of the object as it stands (m): with ``fitted``, the parts fitted on it included (the
+    closed bottle's stopper cap: its highest geom's top above the part's origin, which sits at the mouth)."""
+    if not fitted or not BY_NAME[name].parts:
+        return height(name)
+    m = _model()
+    return height(name) + max(_part_top(m, part) for part in BY_NAME[name].parts)
+
+
+def _part_top(m, part: str) -> float:
+    """How far (m) the part's upright cylinders and boxes reach above its body's origin."""
+    import mujoco
+
+    body = m.body(BY_NAME[part].body).id
+    half = {int(mujoco.mjtGeom.mjGEOM_CYLINDER): 1, int(mujoco.mjtGeom.mjGEOM_BOX): 2}   # the size's half height
+    return max(float(m.geom_pos[g][2] + m.geom_size[g][half[int(m.geom_type[g])]])
+               for g in range(m.ngeom) if m.geom_bodyid[g] == body and int(m.geom_type[g]) in half)
 
 
 @cache

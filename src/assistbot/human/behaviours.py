@@ -209,7 +209,7 @@ def _carry_height(c, p) -> float | None:
         ab = b - a
         s = float(np.clip((base[:2] - a) @ ab / max(float(ab @ ab), 1e-12), 0.0, 1.0))
         if np.linalg.norm(base[:2] - (a + s * ab)) < catalogue.radius(held) + catalogue.radius(other) + CARRY_CLEARANCE:
-            top = base[2] + catalogue.height(other) + (layout.STOPPER_HEIGHT if other == "bottle" else 0.0)
+            top = base[2] + catalogue.top(other)
             need = max(need or 0.0, top + CARRY_CLEARANCE + below)
     return need
 
@@ -353,7 +353,7 @@ def own_side_spot(c, held: str) -> np.ndarray:
 def _top(c, obj: str) -> float:
     """World z of the top of ``obj`` held about upright (the stopper on a closed bottle included)."""
     closed = obj == "bottle" and bool(c.world.data.eq_active[c.world.eq_stopper])
-    return float(_center_base(c, obj)[2]) + catalogue.height(obj) + (layout.STOPPER_HEIGHT if closed else 0.0)
+    return float(_center_base(c, obj)[2]) + catalogue.top(obj, fitted=closed)
 
 
 def put_down(c, object: str | None = None, at: tuple[float, float] | None = None,

@@ -36,7 +36,7 @@ BODY_GEOMS: tuple[str, ...] = ("robot_column", "robot_pedestal")
 _DROP_BODIES = (*catalogue.NAMES, "human_r_upper_arm")
 #: task object -> (radius, height) of the cylinder that stands for it as an obstacle (m): the bottle with its stopper
 OBSTACLES: dict[str, tuple[float, float]] = {
-    o: (catalogue.radius(o), catalogue.height(o) + (layout.STOPPER_HEIGHT if catalogue.BY_NAME[o].parts else 0.0))
+    o: (catalogue.radius(o), catalogue.top(o))
     for o in catalogue.TASK_OBJECTS
 }
 #: where an obstacle that stands for nothing is kept (world z, m)

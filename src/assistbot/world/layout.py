@@ -27,7 +27,6 @@ BOTTLE_BODY_TOP = 0.128        # top of the full-width body, where the shoulder 
 GLASS_INNER_RADIUS = 0.035
 GLASS_BASE_TOP = 0.008
 STOPPER_PLUG_DEPTH = 0.020     # the plug reaches this far below the stopper's origin
-STOPPER_HEIGHT = 0.016         # the cap above the neck when closed
 
 PARTICLE_RADIUS = 0.006
 N_PARTICLES = 40

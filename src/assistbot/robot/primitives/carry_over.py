@@ -14,7 +14,7 @@ from assistbot.robot.phases import Move, Phase
 from assistbot.robot.placement import segment_distance
 from assistbot.robot.primitives.geometry import GRASP_HEIGHT, RADIUS
 from assistbot.task import OBJECTS
-from assistbot.world.layout import STOPPER_HEIGHT, TABLE_Z
+from assistbot.world.layout import TABLE_Z
 
 if TYPE_CHECKING:
     from assistbot.robot.primitives.base import Primitive
@@ -53,7 +53,7 @@ class CarryOver(Phase):
                 continue
             d = float(segment_distance(np.asarray(xy, float), a[:2], b[:2]))
             if d < RADIUS[obj] + RADIUS[other] + CARRY_CLEARANCE:
-                top = TABLE_Z + catalogue.height(other) + (STOPPER_HEIGHT if other == "bottle" else 0.0)
+                top = TABLE_Z + catalogue.top(other)
                 need = max(need, top + CARRY_CLEARANCE + below)
         if need <= max(a[2], b[2]) - HIGH_ENOUGH_WITHIN:
             return

@@ -12,7 +12,6 @@ from assistbot.robot import poses
 from assistbot.robot.phases import Grip, Move, Open, Phase, Rise, Unroll, unreachable
 from assistbot.robot.primitives.geometry import GRASP_HEIGHT, PRE_GRASP_BACK, side_grasp_pose
 from assistbot.task import OBJECTS
-from assistbot.world.layout import STOPPER_HEIGHT
 
 if TYPE_CHECKING:
     from assistbot.robot.primitives.base import Primitive
@@ -30,7 +29,7 @@ ABOVE_GRASP = 0.10
 #: m that the hand's lowest edge passes over the top of an object standing on the table on its way in
 TOP_CLEARANCE = 0.01
 #: m above the table of the top of the tallest object (the bottle with its stopper)
-TALLEST = max(catalogue.height(o) + (STOPPER_HEIGHT if o == "bottle" else 0.0) for o in OBJECTS)
+TALLEST = max(catalogue.top(o) for o in OBJECTS)
 
 
 def retract_phases(over_at: float | None = None) -> list[Phase]:
