@@ -23,26 +23,16 @@ class Wait(Phase):
 
 
 class WaitFor(Phase):
-    """Hold still until ``condition(prim)`` is true."""
+    """Hold still until ``condition(prim)`` is true: failing with ``reason`` after ``timeout`` s, or, with no
+    reason, going on then either way (a wait that is only patience)."""
 
-    def __init__(self, name: str, condition: Callable[["Primitive"], bool], timeout: float, reason: str) -> None:
+    def __init__(self, name: str, condition: Callable[["Primitive"], bool], timeout: float, reason: str | None) -> None:
         self.name, self.condition, self.timeout, self.reason = name, condition, timeout, reason
 
     def tick(self, prim, dt, t):
         prim.robot.hold()
-        if self.condition(prim):
+        if self.condition(prim) or (t >= self.timeout and self.reason is None):
             return Status.SUCCEEDED, ""
         if t >= self.timeout:
             return Status.FAILED, f"{self.name}: {self.reason} within {self.timeout:.0f} s"
         return Status.RUNNING, ""
-
-
-class WaitUpTo(Phase):
-    """Hold still until ``condition(prim)`` is true, or for at most ``seconds``: then go on either way."""
-
-    def __init__(self, name: str, condition: Callable[["Primitive"], bool], seconds: float) -> None:
-        self.name, self.condition, self.seconds, self.timeout = name, condition, seconds, seconds + 1.0
-
-    def tick(self, prim, dt, t):
-        prim.robot.hold()
-        return (Status.SUCCEEDED, "") if self.condition(prim) or t >= self.seconds else (Status.RUNNING, "")

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from assistbot.robot.phases import Move, RememberPlace, Wait, WaitFor, WaitUpTo
+from assistbot.robot.phases import Move, RememberPlace, Wait, WaitFor
 from assistbot.robot.primitives.base import Primitive
 from assistbot.robot.primitives.geometry import LIFT, side_grasp_pose
 from assistbot.robot.primitives.handing_over import hold_out, waiting_for_the_person_to_let_go
@@ -64,7 +64,7 @@ class HoldBottleForStopper(Primitive):
             # brings what she holds into the open hand held out for it)
             reach = reach_and_grasp_phases(self, held_up=True)
             k = next(i for i, ph in enumerate(reach) if ph.name == "above pre-grasp")
-            reach.insert(k, WaitUpTo("wait until it is held out", lambda p: p.held_out() and p.offered(), OFFER_PATIENCE))
+            reach.insert(k, WaitFor("wait until it is held out", lambda p: p.held_out() and p.offered(), OFFER_PATIENCE, None))
             return reach + [
                 Wait("hold", 1.5),
                 waiting_for_the_person_to_let_go(10.0),
