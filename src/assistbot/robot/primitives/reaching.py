@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Callable
 
 import mink
 import numpy as np
@@ -61,6 +61,16 @@ def above_pre_grasp(p: Primitive, height: float | None = None, held_up: bool = F
     return side_grasp_pose(p, back=PRE_GRASP_BACK, up=up, height=height, held_up=held_up)
 
 
+def _reach_goals(height: float | None, held_up: bool) -> list[tuple[str, Callable[[Primitive], mink.SE3], float, float]]:
+    """The poses a reach goes through from the ready pose to the grasp (name, goal, duration, tolerance): over
+    the pre-grasp, the pre-grasp beside the object, the grasp."""
+    return [
+        ("above pre-grasp", lambda p: above_pre_grasp(p, height, held_up), 1.5, 0.02),
+        ("pre-grasp", lambda p: side_grasp_pose(p, back=PRE_GRASP_BACK, up=0.0, height=height, held_up=held_up), 0.8, 0.02),
+        ("approach", lambda p: side_grasp_pose(p, height=height, held_up=held_up), 1.0, 0.025),
+    ]
+
+
 def reach_and_grasp_phases(prim: Primitive, height: float | None = None, held_up: bool = False) -> list[Phase]:
     """Reach and grasp the target from the side: standing on the table, or ``held_up`` by the person (the
     hand then reaches out for it as far as it can, and waits for it there: `Move.reach_out`)."""
@@ -69,12 +79,8 @@ def reach_and_grasp_phases(prim: Primitive, height: float | None = None, held_up
         Rise("rise", READY_POSE_POS[2]),
         Unroll(),
         Move("ready", lambda p: poses.pose(mink.SO3.identity(), READY_POSE_POS), duration=1.2, tolerance=0.04),
-        Move("above pre-grasp", lambda p: above_pre_grasp(p, height, held_up), duration=1.5,
-             reach_out=held_up),
-        Move("pre-grasp", lambda p: side_grasp_pose(p, back=PRE_GRASP_BACK, up=0.0, height=height, held_up=held_up), duration=0.8,
-             reach_out=held_up),
-        Move("approach", lambda p: side_grasp_pose(p, height=height, held_up=held_up), duration=1.0, tolerance=0.025,
-             reach_out=held_up),
+        *(Move(name, goal, duration=duration, tolerance=tolerance, reach_out=held_up)
+          for name, goal, duration, tolerance in _reach_goals(height, held_up)),
         Grip(True, "grasp"),
     ]
 
@@ -82,7 +88,4 @@ def reach_and_grasp_phases(prim: Primitive, height: float | None = None, held_up
 def reachable_on_table(prim: Primitive, height: float | None = None) -> bool:
     """The target, standing on the table where it is seen, can be grasped from there: every pose of the
     reach (`reach_and_grasp_phases`) lies within the arm's reach and the hand-over zone."""
-    goals = (above_pre_grasp(prim, height),
-             side_grasp_pose(prim, back=PRE_GRASP_BACK, up=0.0, height=height),
-             side_grasp_pose(prim, height=height))
-    return not any(unreachable(prim, g) for g in goals)
+    return not any(unreachable(prim, goal(prim)) for _, goal, _, _ in _reach_goals(height, False))
