@@ -63,6 +63,23 @@ def test_an_object_held_lower_than_assumed_is_lowered_until_the_table_carries_it
     assert np.hypot(p[0] - 0.22, p[1] - 0.08) < 0.03 and abs(p[2] - TABLE_Z) < 0.01
 
 
+@pytest.mark.parametrize("obj, above", [("bottle", 0.05), ("glass", 0.02)])
+def test_an_object_held_higher_than_assumed_meets_the_table_sooner_and_is_set_down_there(obj, above):
+    # taken from the person's hand at a height seen too low, the bottle sat 6 cm higher in the hand than the
+    # put-down assumed: it met the table while the hand was still above its goal (partner 1046)
+    arr = ("HWS:closed", "RWS:empty@0.20,-0.12") if obj == "glass" else ("RWS:open@0.20,-0.12", "HWS:empty")
+    w = build_world(Arrangement.from_options(*arr), seed=0)
+    robot = RobotController(w.model, w.data)
+    prim = _PlaceGraspedLow(robot, obj, -above, spot=(0.22, 0.08))
+    pr, s = run(w, prim, body_xy(w, obj))
+    assert pr.status is Status.SUCCEEDED, pr.reason
+    for _ in range(25):
+        w.step(10)
+    p = w.data.xpos[w.body_id[obj]]
+    assert w.data.xmat[w.body_id[obj]][8] > 0.98          # upright
+    assert np.hypot(p[0] - 0.22, p[1] - 0.08) < 0.03 and abs(p[2] - TABLE_Z) < 0.01
+
+
 def test_what_the_hand_carries_passes_over_an_object_standing_in_the_way():
     """The glass carried across the RWS from one side of the closed bottle to the other: the straight
     way at the usual carrying height goes through the bottle; the hand rises over it and the bottle

@@ -45,12 +45,18 @@ class Move(Phase):
     ``reach_out``: a goal out of the arm's reach (an object the person holds out too far) is not a
     failure at once: the hand goes as far toward it as it can and waits there, open, up to REACH_WAIT
     s, for the goal to come within reach (the person, seeing the hand held out for what they hold,
-    brings it closer); the move then goes on to the goal itself."""
+    brings it closer); the move then goes on to the goal itself.
+
+    ``may_stop_above``: a move down that what the hand holds may end sooner (an object set down meets the
+    table early when it sits higher in the hand than assumed): a hand still above its goal when the settle time
+    is up, but over it within ``tolerance``, has arrived; it then holds where it stopped, not pressing on."""
 
     def __init__(self, name: str, goal: Callable[["Primitive"], mink.SE3], duration: float = 1.5,
-                 tolerance: float = 0.02, settle: float = 1.5, check_reach: bool = True, reach_out: bool = False) -> None:
+                 tolerance: float = 0.02, settle: float = 1.5, check_reach: bool = True, reach_out: bool = False,
+                 may_stop_above: bool = False) -> None:
         self.name, self.goal, self.duration = name, goal, duration
         self.tolerance, self.settle, self.check_reach, self.reach_out = tolerance, settle, check_reach, reach_out
+        self.may_stop_above = may_stop_above
         self.timeout = duration + settle
 
     def start(self, prim: "Primitive") -> None:
@@ -72,6 +78,10 @@ class Move(Phase):
             pos = sh + (pos - sh) * (REACH - REACH_OUT_MARGIN) / d
         pos[0] = max(pos[0], TCP_MIN_X)
         return poses.pose(goal.rotation(), pos)
+
+    def _stopped_above(self, prim, goal: mink.SE3) -> bool:
+        off = prim.robot.tcp_pose().translation() - goal.translation()
+        return bool(off[2] > 0.0 and float(np.hypot(off[0], off[1])) < self.tolerance)
 
     def tick(self, prim, dt, t):
         goal = self.goal(prim)
@@ -104,6 +114,9 @@ class Move(Phase):
         if t >= self.duration:
             err = float(np.linalg.norm(prim.robot.tcp_pose().translation() - goal.translation()))
             if err < self.tolerance:
+                return Status.SUCCEEDED, ""
+            if t >= self.timeout and self.may_stop_above and self._stopped_above(prim, goal):
+                prim.robot.reset_command()
                 return Status.SUCCEEDED, ""
             if t >= self.timeout:
                 return Status.FAILED, f"{self.name}: did not reach the target (TCP {100 * err:.1f} cm away)"

@@ -34,8 +34,9 @@ def put_down_at(xy_of: Callable[[Primitive], np.ndarray], lift: float = LIFT) ->
         FreeIdleFingers(),
         CarryOver(lambda p: at(p, lift)),
         Move("carry", lambda p: at(p, lift), duration=1.8),
-        # down to just above where the object would touch if held as assumed; the rest by feel
-        Move("put down", lambda p: at(p, SET_DOWN_ABOVE), duration=1.2, tolerance=0.025),
+        # down to just above where the object would touch if held as assumed (held higher, it touches sooner and
+        # the hand stops above that); the rest by feel
+        Move("put down", lambda p: at(p, SET_DOWN_ABOVE), duration=1.2, tolerance=0.025, may_stop_above=True),
         LowerUntilSupported(),
         Open("release"), SetCarrying(False),
         BackOff(),
