@@ -47,9 +47,9 @@ class Move(Phase):
     s, for the goal to come within reach (the person, seeing the hand held out for what they hold,
     brings it closer); the move then goes on to the goal itself.
 
-    ``may_stop_above``: a move down that what the hand holds may end sooner (an object set down meets the
-    table early when it sits higher in the hand than assumed): a hand still above its goal when the settle time
-    is up, but over it within ``tolerance``, has arrived; it then holds where it stopped, not pressing on."""
+    ``may_stop_above``: a move down that may end sooner, on the object in the hand meeting the table (it sits
+    higher in the hand than assumed): a hand still above its goal when the settle time is up, but over it
+    within ``tolerance``, has arrived; it then holds where it stopped, not pressing on."""
 
     def __init__(self, name: str, goal: Callable[["Primitive"], mink.SE3], duration: float = 1.5,
                  tolerance: float = 0.02, settle: float = 1.5, check_reach: bool = True, reach_out: bool = False,

@@ -24,8 +24,7 @@ if TYPE_CHECKING:
 #: REACH, within the slack, since the person's arm stops at the middle line
 SHARED_REACH = REACH + REACH_SLACK - 0.012
 #: the way (table x, y, from and to) the hand goes down from the ready pose to rest after every action, its
-#: open fingers pointing at the table: what the robot sets down there is swept over (partner 1070, a bottle
-#: set down 11 cm from the ready pose)
+#: open fingers pointing at the table: what the robot sets down near it is swept over
 TO_REST = (READY_POSE_POS[:2], REST_POSE_POS[:2])
 #: where an object is held out for the human to take: its centre (table x, y) and its base height above the table
 HOLD_OUT_XY = (-0.04, -0.04)
