@@ -65,8 +65,9 @@ def test_an_object_held_lower_than_assumed_is_lowered_until_the_table_carries_it
 
 @pytest.mark.parametrize("obj, above", [("bottle", 0.05), ("glass", 0.02)])
 def test_an_object_held_higher_than_assumed_meets_the_table_sooner_and_is_set_down_there(obj, above):
-    # taken from the person's hand at a height seen too low, the bottle sat 6 cm higher in the hand than the
-    # put-down assumed: it met the table while the hand was still above its goal (partner 1046)
+    # brought down into the robot's closing hand by the person, the bottle sat 6 cm higher in the hand than the
+    # put-down assumed: it met the table while the hand was still above its goal (partner 1046). Here the grasp
+    # closes ``above`` higher on the object than the put-down assumes (`_PlaceGraspedLow` with a negative drop)
     arr = ("HWS:closed", "RWS:empty@0.20,-0.12") if obj == "glass" else ("RWS:open@0.20,-0.12", "HWS:empty")
     w = build_world(Arrangement.from_options(*arr), seed=0)
     robot = RobotController(w.model, w.data)
