@@ -26,6 +26,7 @@ import numpy as np
 
 from assistbot.human.dls import bounded, dls_step, pose_at
 from assistbot.human.ikmodel import arm_model
+from assistbot.human.tremor import Tremor
 from assistbot.interfaces import CONTROL_DT
 from assistbot.world import HAND_POSTURES, HUMAN_ARM_JOINTS, HUMAN_HAND_JOINTS, layout
 
@@ -185,8 +186,8 @@ class HumanArm:
 
     speed: mean hand speed (m/s) of a reach; a reach of distance d lasts
     max(MIN_DURATION, d / speed, rotation / ANGULAR_SPEED) seconds. The arm is the world's person's
-    (``world.human_body``). A tremor (amplitude m, frequency Hz) moves the commanded hand along
-    TREMOR_DIRECTION all the time, at rest too.
+    (``world.human_body``). A tremor (amplitude m, frequency Hz) moves the hand along TREMOR_DIRECTION all
+    the time, at rest too, by that amplitude as the measured hand makes it (`tremor.Tremor`).
     """
 
     def __init__(self, world, speed: float = 0.2, dt: float = CONTROL_DT, tremor_amplitude: float = 0.0,
@@ -201,7 +202,7 @@ class HumanArm:
         self.shoulder_xy = self.shoulder[:2].copy()
         self.tremor_amplitude = float(tremor_amplitude)
         self.tremor_frequency = float(tremor_frequency)
-        self._tremor_dir = TREMOR_DIRECTION / np.linalg.norm(TREMOR_DIRECTION)
+        self._tremor = Tremor(self.tremor_amplitude, self.tremor_frequency, TREMOR_DIRECTION, self.dt)
         self.d = mujoco.MjData(self.m)
         wm = world.model
         self._act = np.array([wm.actuator(j).id for j in HUMAN_ARM_JOINTS])
@@ -249,8 +250,8 @@ class HumanArm:
         return own_table_spot(xy, self.shoulder, self.reach, radius)
 
     def tremor(self, t: float) -> np.ndarray:
-        """The tremor's displacement of the hand at time t (world, m)."""
-        return self.tremor_amplitude * math.sin(2.0 * math.pi * self.tremor_frequency * t) * self._tremor_dir
+        """The tremor's commanded displacement of the hand at time t (world, m)."""
+        return self._tremor.offset(t)
 
     # ------------------------------------------------------------------ commands
     def clamp_target(self, p, t: float = 0.0) -> np.ndarray:
@@ -336,19 +337,27 @@ class HumanArm:
         moving = self.segment is not None and not self.segment.done(t)
         if not moving and self._settled and self.tremor_amplitude == 0.0:
             return  # holding still at the goal: the servo targets stand
+        if self.tremor_amplitude > 0.0 and self.world.human_holding() is None:
+            # the tremor is the free hand's: measured while it holds nothing (what it holds, or the table under
+            # it, damps it as it would a real one). Its deviation from the planned path is the tremor and slow
+            # lags, which the lock-in ignores
+            self._tremor.observe(t, self.hand_pose()[0] - self._planned(t)[0])
         q, biggest = self._follow(t, iterations)
         self.q = q
         self._settled = not moving and biggest < SETTLED_STEP
         self.world.data.ctrl[self._act] = self.q
 
+    def _planned(self, t: float) -> tuple[np.ndarray, np.ndarray]:
+        """The hand's pose at time t on the present motion (the tremor aside)."""
+        if self.segment is not None:
+            seg = next((g for g in self.segments if not g.done(t)), self.segment)
+            return seg.at(t)
+        return self.p_goal, self.R_goal
+
     def _follow(self, t: float, iterations: int = 1) -> tuple[np.ndarray, float]:
         """The commanded angles of the next tick: IK toward the segment's pose at t + dt from the present
         command, each joint moved at most its top speed; and the largest step taken."""
-        if self.segment is not None:
-            seg = next((g for g in self.segments if not g.done(t + self.dt)), self.segment)
-            p_t, R_t = seg.at(t + self.dt)
-        else:
-            p_t, R_t = self.p_goal, self.R_goal
+        p_t, R_t = self._planned(t + self.dt)
         if self.tremor_amplitude > 0.0:
             p_t = p_t + self.tremor(t + self.dt)
         q = self.q
