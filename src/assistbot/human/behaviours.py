@@ -562,14 +562,14 @@ def pull_stopper(c, timeout: float = 3.0, wait_for_robot: float = 0.0) -> Gen:
         return False, "the bottle is already open"
     if w.human_holding() is not None:
         return False, "the hand is not empty"
-    for short in range(SHORT_TRIES + 1):
-        held_at = np.array(c.view.hand_pos, float)
-        ok, why, s, R = yield from _reach_the_stopper(c)
-        # stopped short of it: the hand waits there for the robot to bring the bottle nearer, then reaches again
-        if ok or short == SHORT_TRIES or not (yield from _brought_nearer(c, "bottle", held_at)):
-            break
-    if not ok:
-        return False, why
+    s = w.data.site_xpos[w.site_id["stopper_grasp"]].copy()
+    R = grip_orientation("ag", s, c.arm.shoulder_xy)
+    c.arm.set_posture("open")
+    if not (yield from _move(c, s + np.array([0, 0, 0.07]), R)):
+        return False, "could not reach above the stopper"
+    s = w.data.site_xpos[w.site_id["stopper_grasp"]].copy()
+    if not (yield from _move(c, s, R, tol=0.02)):
+        return False, "could not reach the stopper"
     if not (yield from _close(c, "ag", "stopper")):
         c.arm.set_posture("open")
         return False, "the grip on the stopper did not close"
@@ -593,21 +593,6 @@ def pull_stopper(c, timeout: float = 3.0, wait_for_robot: float = 0.0) -> Gen:
     # put the stopper aside in the HWS
     ok, _ = yield from put_down(c, "stopper", at=(-0.32, -0.32))
     return True, "stopper removed"
-
-
-def _reach_the_stopper(c) -> Generator[None, None, tuple[bool, str, np.ndarray, np.ndarray]]:
-    """The open hand above the stopper, then at it, from above: whether it got there, why not, and the
-    stopper's grip point and the hand's turn it went for."""
-    w = c.world
-    s = w.data.site_xpos[w.site_id["stopper_grasp"]].copy()
-    R = grip_orientation("ag", s, c.arm.shoulder_xy)
-    c.arm.set_posture("open")
-    if not (yield from _move(c, s + np.array([0, 0, 0.07]), R)):
-        return False, "could not reach above the stopper", s, R
-    s = w.data.site_xpos[w.site_id["stopper_grasp"]].copy()
-    if not (yield from _move(c, s, R, tol=0.02)):
-        return False, "could not reach the stopper", s, R
-    return True, "at the stopper", s, R
 
 
 def turn_roll(R: np.ndarray, fraction: float) -> np.ndarray:

@@ -9,8 +9,8 @@ from assistbot.robot.phases.move import REACH_WAIT, UNREACHABLE_PATIENCE, Move, 
 from assistbot.robot.phases.relative import BackOff, Relative, Rise
 from assistbot.robot.phases.roll import Roll, Unroll
 from assistbot.robot.phases.wait import Wait, WaitFor
-from assistbot.robot.phases.wait_for_take import WaitForTake, WaitMeeting
+from assistbot.robot.phases.wait_for_take import WaitForTake
 
 __all__ = ["OPENED", "REACH_WAIT", "UNREACHABLE_PATIENCE", "BackOff", "FreeIdleFingers", "Grip", "LowerUntilSupported", "Move",
            "Open", "Phase", "Relative", "RememberPlace", "Rise", "Roll", "SetCarrying", "Unroll", "Wait", "WaitFor", "WaitForTake",
-           "WaitMeeting", "unreachable"]
+           "unreachable"]

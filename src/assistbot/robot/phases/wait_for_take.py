@@ -1,5 +1,5 @@
-"""Holding an object out to the person until they have done something with it (taken it: seen holding it, or
-felt pulling; pulled its stopper), bringing it nearer a hand that stops short of it."""
+"""Holding an object out until the person takes it: seen holding it, or felt pulling; brought nearer a hand that
+stops short of it."""
 
 from __future__ import annotations
 
@@ -13,16 +13,22 @@ from assistbot.robot import poses
 from assistbot.robot.phases.wait import WaitFor
 
 
-class WaitMeeting(WaitFor):
-    """Hold the object out until ``condition(prim)``, bringing it nearer the person's hand when that stops short.
+class WaitForTake(WaitFor):
+    """Hold the object out until the person takes it: felt, as the wrist's force moves PULL_N away from
+    what it was once the held-out hand had come to rest, the person's grip taking up part of the load.
+
+    Not seen: the cameras read a hand closing around the object as holding it before it does (the
+    fingers hide the object in the robot's hand), and a hand let go of too soon drops the object.
 
     ``meet(prim, hand)``: the pose that brings the object nearer the person's hand seen at ``hand``, or None.
     A hand seen reaching for the object and keeping still for MEET_STILL s without touching it (felt: the
-    wrist's force within TOUCH_N of what it was once the held-out hand had come to rest) has gone as far as
-    this person reaches: the object is brought nearer them (MEET_SECONDS), MEET_TRIES times at most, as a
-    person hands a thing to someone who cannot quite reach it."""
+    wrist's force within TOUCH_N of rest) has gone as far as this person reaches: the object is brought
+    nearer them (`meet_goal`, MEET_SECONDS), MEET_TRIES times at most, as a person hands a thing to someone
+    who cannot quite reach it."""
 
+    PULL_N = 0.8
     REST_SECONDS = 0.3   # the force at rest is read after this
+    FELT_TICKS = 2       # in a row: one jolt is not a pull
     MEET_STILL = 2.5     # s the reaching hand keeps still before the object is brought to it (longer than
                          # a reach pauses on its way, at the approach pose)
     TOUCH_N = 0.3        # N the wrist's force moves from rest when the person's hand touches the object: a
@@ -36,9 +42,9 @@ class WaitMeeting(WaitFor):
     MOVED = 0.04          # m from that stop that a hand seen since has moved: it reaches again
     RETRY_SECONDS = 6.0   # added to the wait for each time: the person reaches again once the object is still
 
-    def __init__(self, name: str, condition: Callable[[object], bool], timeout: float, reason: str | None,
+    def __init__(self, name: str, timeout: float, reason: str,
                  meet: Callable[[object, np.ndarray], mink.SE3 | None] | None = None) -> None:
-        super().__init__(name, condition, timeout, reason)
+        super().__init__(name, lambda p: self._felt >= self.FELT_TICKS, timeout, reason)
         self.meet = meet
         self.base_timeout = timeout
 
@@ -46,14 +52,12 @@ class WaitMeeting(WaitFor):
         super().start(prim)
         self._rest = None
         self._rest_at = self.REST_SECONDS
+        self._felt = 0
         self._hand: list[tuple[float, np.ndarray | None]] = []
         self._meets = 0
         self._met: np.ndarray | None = None   # where the hand had stopped when the object was last brought to it
         self._bringing: tuple[mink.SE3, mink.SE3, float] | None = None
         self.timeout = self.base_timeout
-
-    def felt(self, off_rest: float) -> None:
-        """Take in how far (N) the wrist's force lies from rest this tick, once rest has been read."""
 
     def _stopped_hand(self, prim, t: float) -> np.ndarray | None:
         """Where the hand reaching for the object has kept still for MEET_STILL s, or None."""
@@ -93,7 +97,7 @@ class WaitMeeting(WaitFor):
                 self._rest, off_rest = force, 0.0
         else:
             off_rest = float(np.linalg.norm(force - self._rest))
-            self.felt(off_rest)
+            self._felt = self._felt + 1 if off_rest > self.PULL_N else 0
         if self.meet is not None and self._meets < self.MEET_TRIES and off_rest is not None and off_rest <= self.TOUCH_N:
             hand = self._stopped_hand(prim, t)
             goal = self.meet(prim, hand) if hand is not None else None
@@ -105,26 +109,3 @@ class WaitMeeting(WaitFor):
                 self._bring(prim, dt, t)
                 return Status.RUNNING, ""
         return super().tick(prim, dt, t)
-
-
-class WaitForTake(WaitMeeting):
-    """Hold the object out until the person takes it: felt, as the wrist's force moves PULL_N away from
-    what it was once the held-out hand had come to rest, the person's grip taking up part of the load;
-    brought nearer a hand that stops short of it (`WaitMeeting`).
-
-    Not seen: the cameras read a hand closing around the object as holding it before it does (the
-    fingers hide the object in the robot's hand), and a hand let go of too soon drops the object."""
-
-    PULL_N = 0.8
-    FELT_TICKS = 2       # in a row: one jolt is not a pull
-
-    def __init__(self, name: str, timeout: float, reason: str,
-                 meet: Callable[[object, np.ndarray], mink.SE3 | None] | None = None) -> None:
-        super().__init__(name, lambda p: self._felt >= self.FELT_TICKS, timeout, reason, meet)
-
-    def start(self, prim):
-        super().start(prim)
-        self._felt = 0
-
-    def felt(self, off_rest: float) -> None:
-        self._felt = self._felt + 1 if off_rest > self.PULL_N else 0

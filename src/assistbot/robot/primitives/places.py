@@ -75,32 +75,25 @@ def within_offer_limits(prim: "Primitive", c: np.ndarray) -> np.ndarray:
     return c
 
 
-def meet_goal(prim: "Primitive", hand, part: float | None = None) -> mink.SE3 | None:
+def meet_goal(prim: "Primitive", hand) -> mink.SE3 | None:
     """The hand pose that brings the object held out nearer the person, whose hand has been seen reaching for it
     and stopping at table ``hand`` (x, y, z) without taking it: the object MEET_STEP farther toward the
     person's side, and by as much at most toward the hand's height and side, the robot's hand turned as it is,
     within `within_offer_limits`. Not all the way to the hand as seen: where the robot's arm hides the hand's
     end vision places the hand several cm off, even at the object; the person's reach is from their side, and
     the hand's side and height say the rest. None when the hand is too far off to be reaching for it
-    (MEET_MAX) or the arm cannot bring the object nearer.
-
-    ``part``: the height above the object's base of what the hand reaches for from above (the stopper): the
-    object then only ever comes down toward the hand's height, since a hand above that part has it low
-    enough. None: the object's middle, taken from the side."""
+    (MEET_MAX) or the arm cannot bring the object nearer."""
     tcp = prim.robot.tcp_pose()
     obj = prim.object
-    centre = held_centre(tcp, obj)                       # at grasp height
-    base = centre - np.array([0.0, 0.0, GRASP_HEIGHT[obj]])
-    aim = base + np.array([0.0, 0.0, 0.5 * catalogue.height(obj) if part is None else part])
+    up = np.array([0.0, 0.0, GRASP_HEIGHT[obj] - 0.5 * catalogue.height(obj)])   # the middle to the grasp height
+    centre = held_centre(tcp, obj)
+    middle = centre - up
     at = np.asarray(hand, float) + np.array([0.0, 0.0, TABLE_Z])
-    if float(np.linalg.norm(at - aim)) > MEET_MAX:
+    if float(np.linalg.norm(at - middle)) > MEET_MAX:
         return None
-    step = np.array([-MEET_STEP, *np.clip(at[1:] - aim[1:], -MEET_STEP, MEET_STEP)])
-    if part is not None:
-        step[2] = min(step[2], 0.0)
-    to = base + step
-    to[2] = max(to[2], TABLE_Z + OFFER_BASE[0])
-    c = within_offer_limits(prim, to + np.array([0.0, 0.0, GRASP_HEIGHT[obj]]))
+    to = middle + np.array([-MEET_STEP, *np.clip(at[1:] - middle[1:], -MEET_STEP, MEET_STEP)])
+    to[2] = max(to[2], TABLE_Z + OFFER_BASE[0] + 0.5 * catalogue.height(obj))
+    c = within_offer_limits(prim, to + up)
     if float(np.linalg.norm(c - centre)) < MEET_MIN:
         return None
     prim._offer = c
