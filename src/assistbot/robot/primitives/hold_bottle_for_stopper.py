@@ -31,9 +31,7 @@ class HoldBottleForStopper(Primitive):
     HOLD_XY = (TCP_MIN_X + OFFER_X_MARGIN, -0.02)
     HOLD_BASE = OFFER_BASE[0]
 
-    # s the bottle is held for a pull that does not come: then the robot puts it back and says so, rather than
-    # stand still holding it (in 20 s a person who pulls has pulled)
-    def __init__(self, robot, obj="bottle", timeout: float = 20.0, **kw):
+    def __init__(self, robot, obj="bottle", timeout: float = 30.0, **kw):
         super().__init__(robot, obj, **kw)
         self.timeout = timeout
         self.home_xy: np.ndarray | None = None
