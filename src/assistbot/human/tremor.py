@@ -2,12 +2,13 @@
 
 The tremor is an oscillation of the commanded hand (`HumanArm`), but the arm's position servos are a lightly
 damped mass-spring system whose resonance lies in the tremor band (4-8 Hz): commanded as drawn, the hand moved
-up to 3.4 times as far (docs/measurements.md, "The tremor as drawn"), and how far depends on the posture and on
-what the hand holds. So the generator watches the hand (the person's own sense of it): it demodulates, at the
-tremor's frequency, both the displacement it commands and the one the hand makes (a lock-in over a few cycles)
-and scales its command by their ratio, so that the hand trembles by the drawn amplitude whatever the body,
-posture or load. It watches the hand's deviation from its planned path: the reach itself is not in it, and what
-is (the servos' lag, the sag under a load) varies far more slowly than the tremor and averages out.
+up to 3.4 times as far (docs/measurements.md, "The tremor as drawn, and the stopper within reach"), and how
+far depends on the posture and on what the hand holds. So the generator watches the hand (the person's own
+sense of it): it demodulates, at the tremor's frequency, both the displacement it commands and the one the
+hand makes (a lock-in over a few cycles) and scales its command by their ratio, so that the hand trembles by
+the drawn amplitude whatever the body, posture or load. It watches the hand's deviation from its planned
+path: the reach itself is not in it, and what is (the servos' lag, the sag under a load) varies far more
+slowly than the tremor and averages out.
 """
 
 from __future__ import annotations
@@ -33,7 +34,8 @@ class Tremor:
         self.frequency = float(frequency)
         self.direction = np.asarray(direction, float) / np.linalg.norm(direction)
         self.scale = 1.0
-        self._rate = min(1.0, float(dt) / WINDOW)
+        self._dt = float(dt)
+        self._rate = min(1.0, self._dt / WINDOW)
         self._mean = None                  # the slow part of the deviation along the direction
         self._hand = np.zeros(2)           # the hand's oscillation at the frequency (in-phase, quadrature)
         self._command = np.zeros(2)        # the command's
@@ -59,7 +61,7 @@ class Tremor:
         c = float(self.offset(t) @ self.direction)
         self._hand += self._rate * ((y - self._mean) * ref - self._hand)
         self._command += self._rate * (c * ref - self._command)
-        self._seen += self._rate * WINDOW
+        self._seen += self._dt
         if self._seen < WINDOW:
             return
         made, asked = float(np.hypot(*self._hand)), float(np.hypot(*self._command))

@@ -27,7 +27,8 @@ class HoldBottleForStopper(Primitive):
 
     name = "hold_bottle_for_stopper"
     # the person reaches the stopper from above: held as deep into her side and as low as anything the robot
-    # offers, the stopper is within the reach of a short or stiff arm too (docs/measurements.md, "Partner 1068")
+    # offers, the stopper is within the reach of a short or stiff arm too (docs/measurements.md,
+    # "The tremor as drawn, and the stopper within reach")
     HOLD_XY = (TCP_MIN_X + OFFER_X_MARGIN, -0.02)
     HOLD_BASE = OFFER_BASE[0]
 
