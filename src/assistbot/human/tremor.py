@@ -45,8 +45,8 @@ class Tremor:
         return 2.0 * math.pi * self.frequency * t
 
     def offset(self, t: float) -> np.ndarray:
-        """The commanded displacement of the hand at time t (world, m). It sets in over two windows: over the first
-        the arm's gain at the frequency is not yet known."""
+        """The commanded displacement of the hand at time t (world, m). It sets in over the first two windows the
+        free hand is watched (the arm's gain at the frequency is not known before the first has passed)."""
         onset = min(1.0, self._seen / (2.0 * WINDOW))
         return onset * self.scale * self.amplitude * math.sin(self._phase(t)) * self.direction
 
