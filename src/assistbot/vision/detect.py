@@ -243,6 +243,29 @@ def _rim_to_axis(cam: CameraModel, uv, z: float, r: float) -> tuple[float, float
     return px + r * hx / n, py + r * hy / n, pz
 
 
+def _rim_height(cam: CameraModel, uv, axis: np.ndarray, r: float) -> float:
+    """The height of the point on the ray through pixel uv that passes nearest (seen from above) the front
+    of the rim of an upright object of radius r on ``axis`` (x, y): the rim's height, if uv is where its
+    silhouette's lowest point shows it."""
+    d = cam.ray(np.array([uv]))[0]
+    C = cam.C
+    toward = C[:2] - axis
+    front = axis + r * toward / math.sqrt(float(toward @ toward))
+    s = float((front - C[:2]) @ d[:2]) / float(d[:2] @ d[:2])
+    return float(C[2] + s * d[2])
+
+
+def _lifted_base_z(cams, rois, axis: np.ndarray, r: float) -> float | None:
+    """Height of a lifted, upright object's base from its silhouette's lowest point in both cameras (the
+    front of its base's rim, on the axis found from its full-width rows), or None where skin hides it in
+    either or the two disagree by more than BASE_AGREE. A hand that holds it from above hides its top,
+    and then the silhouette's centroid lies several cm low; the base's rim it does not hide."""
+    if any(roi.skin_below() for roi in rois):
+        return None
+    a, b = (_rim_height(cam, roi.bottom, axis, r) for cam, roi in zip(cams, rois))
+    return 0.5 * (a + b) if abs(a - b) <= BASE_AGREE else None
+
+
 def _axis_xy(cams, rois) -> np.ndarray | None:
     """x, y of an upright object's axis from the rows showing its full width in both images (the
     middles of their edges, triangulated; the median), or None with fewer than `AXIS_ROWS` such rows."""
@@ -311,6 +334,14 @@ class _Roi:
         or what hides its base."""
         v = self.y0 + self.bot_r + 0.5 + BELOW_PX
         return np.array([[self._bottom_lr[0], v], [self.bottom[0], v], [self._bottom_lr[1], v]])
+
+    def skin_below(self) -> bool:
+        """Skin just under the silhouette's lowest row, anywhere across it: a hand hides its base."""
+        v = self.bot_r + int(BELOW_PX)
+        if v >= self.lab.shape[0]:
+            return False
+        u0, u1 = (int(u) - self.x0 for u in self._bottom_lr)
+        return bool(np.any(self.lab[v, max(0, u0):u1 + 1] == _K))
 
     def above(self) -> np.ndarray:
         """Pixels just over the silhouette's highest row, at its middle and a few px to each side: what
@@ -428,6 +459,8 @@ class Detector:
             (ax, ay, az), (bx, by, bz) = bases
             pos = np.array([(ax + bx) / 2, (ay + by) / 2, (az + bz) / 2])
         else:   # lifted: x, y from the axis in both images; the height from the silhouette's centroid
+            # (the features and the expected outline use that one; the position reported, its base's
+            # front rim where both cameras see it: `_lifted_base_z`)
             pos = triangulate(cams[0], cams[1], rois[0].centroid, rois[1].centroid)[0]
             pos[2] -= CENTROID_Z[name]
             if axis is not None:
@@ -469,6 +502,10 @@ class Detector:
         det.lying = bool(on_table and inside and not det.on_robot and not top_hidden
                          and min(roi.upright_tilt() for roi in rois) >= LYING_TILT)
         self._object_features(det, rois, cams, pos)
+        if not on_table and axis is not None and not det.on_robot:
+            z = _lifted_base_z(cams, rois, axis, r_obj)
+            if z is not None:
+                det.position = np.array([pos[0], pos[1], z])
         return det
 
     def _object_features(self, det: ObjectDetection, rois, cams, pos) -> None:
