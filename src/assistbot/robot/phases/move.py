@@ -10,6 +10,7 @@ import numpy as np
 from assistbot.interfaces import Status
 from assistbot.robot import poses
 from assistbot.robot.controller import REACH, TCP_MIN_X
+from assistbot.robot.gripper import GRASP_N
 from assistbot.robot.phases.base import Phase
 
 if TYPE_CHECKING:
@@ -47,14 +48,19 @@ class Move(Phase):
     s, for the goal to come within reach (the person, seeing the hand held out for what they hold,
     brings it closer); the move then goes on to the goal itself.
 
+    ``arrive_on_touch``: a move that ends sooner, on the palm feeling something pressed into it as firmly
+    as a grasp holds (GRASP_N): a person who sees the open hand held out for what they hold brings it into
+    the hand, where the cameras, the hand in front, often no longer see it to follow.
+
     ``may_stop_above``: a move down that may end sooner, on the object in the hand meeting the table (it sits
     higher in the hand than assumed): a hand still above its goal when the settle time is up, but over it
     within ``tolerance``, has arrived; it then holds where it stopped, not pressing on."""
 
     def __init__(self, name: str, goal: Callable[["Primitive"], mink.SE3], duration: float = 1.5,
                  tolerance: float = 0.02, settle: float = 1.5, check_reach: bool = True, reach_out: bool = False,
-                 may_stop_above: bool = False) -> None:
+                 may_stop_above: bool = False, arrive_on_touch: bool = False) -> None:
         self.name, self.goal, self.duration = name, goal, duration
+        self.arrive_on_touch = arrive_on_touch
         self.tolerance, self.settle, self.check_reach, self.reach_out = tolerance, settle, check_reach, reach_out
         self.may_stop_above = may_stop_above
         self.timeout = duration + settle
@@ -84,6 +90,9 @@ class Move(Phase):
         return bool(off[2] > 0.0 and float(np.hypot(off[0], off[1])) < self.tolerance)
 
     def tick(self, prim, dt, t):
+        if self.arrive_on_touch and prim.robot.gripper.pressure()["palm"] > GRASP_N:
+            prim.robot.hold()
+            return Status.SUCCEEDED, ""
         goal = self.goal(prim)
         why = unreachable(prim, goal, self.name) if self.check_reach else ""
         if why and self.reach_out:

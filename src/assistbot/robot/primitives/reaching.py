@@ -79,7 +79,8 @@ def reach_and_grasp_phases(prim: Primitive, height: float | None = None, held_up
         Rise("rise", READY_POSE_POS[2]),
         Unroll(),
         Move("ready", lambda p: poses.pose(mink.SO3.identity(), READY_POSE_POS), duration=1.2, tolerance=0.04),
-        *(Move(name, goal, duration=duration, tolerance=tolerance, reach_out=held_up)
+        *(Move(name, goal, duration=duration, tolerance=tolerance, reach_out=held_up,
+               arrive_on_touch=held_up and name == "approach")
           for name, goal, duration, tolerance in _reach_goals(height, held_up)),
         Grip(True, "grasp"),
     ]
