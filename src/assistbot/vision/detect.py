@@ -85,6 +85,11 @@ _ANG = np.linspace(0, 2 * np.pi, 8, endpoint=False)
 #: an upright object's outline points (base and top rings) relative to its base centre
 _OUTLINE = {n: np.vstack([np.column_stack([catalogue.radius(n) * np.cos(_ANG), catalogue.radius(n) * np.sin(_ANG), np.full(8, z)])
                           for z in (0.0, HEIGHT[n])]) for n in HEIGHT}
+#: points all over an upright object's image, off its edges (an arm beside it does not lie across it): its axis at
+#: five heights and its base and top rings drawn in to INSIDE_R of its radius
+INSIDE_R = 0.6
+_INSIDE = {n: np.vstack([INSIDE_R * _OUTLINE[n] * [1, 1, 0] + _OUTLINE[n] * [0, 0, 1],
+                         np.column_stack([np.zeros(5), np.zeros(5), np.linspace(0.0, HEIGHT[n], 5)])]) for n in HEIGHT}
 
 
 @dataclass
@@ -104,6 +109,7 @@ class ObjectDetection:
     inside: bool = False                # off the image borders in both cameras
     on_robot: bool = False              # its silhouette ends on the robot's arm in a camera (its base may be hidden)
     lying: bool = False                 # on the table, on its side (`LYING_TILT`)
+    covered: bool = False               # the robot's arm over its image in a camera: what tells its state may be hidden
 
 
 @dataclass
@@ -499,6 +505,7 @@ class Detector:
         # covers part of it. (The triangulated top is no cue: the top rows of the two images are different
         # points of the rim, and the height it gives is off by several cm near the cameras)
         top_hidden = body is not None and any(body.covers(cam, roi.above()) for cam, roi in zip(cams, rois))
+        det.covered = body is not None and any(body.covers(cam, cam.project(pos + _INSIDE[name])) for cam in cams)
         det.lying = bool(on_table and inside and not det.on_robot and not top_hidden
                          and min(roi.upright_tilt() for roi in rois) >= LYING_TILT)
         self._object_features(det, rois, cams, pos)

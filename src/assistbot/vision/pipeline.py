@@ -143,8 +143,10 @@ class Vision:
         `HAND_AT_TOP` m) means the stopper may be hidden in the hand: the state then comes with a low
         confidence, and as not in view if no camera shows red; else open."""
         if name != "bottle":
+            # the robot's own arm across its image (the hand reaching past it, pouring over it) hides what tells
+            # its state, its opening or the liquid in it: the reading is then a guess
             state, conf, _ = self.classifiers[name].classify(d.crop, d.feat)
-            return state, conf, True
+            return state, conf, not d.covered
         hand_at_top = bool(hand.visible and _norm(hand.position - (d.position + [0, 0, 0.19])) < HAND_AT_TOP)
         # lifted in the person's hand (as `Detector._held` tells it): a grip from above covers the stopper
         # wherever vision puts the hand
