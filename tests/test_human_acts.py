@@ -542,3 +542,25 @@ def test_asked_to_set_it_down_with_an_empty_hand_she_fetches_what_she_was_handin
     g = w.data.xpos[w.body_id["glass"]]
     assert w.state().human_holds is None and w.state().objects["glass"].upright
     assert np.hypot(g[0] - spot[0], g[1] - spot[1]) < 0.05, g
+
+
+def test_what_she_set_down_for_the_robot_she_leaves_to_it():
+    # an active person asked to set the closed bottle down under the robot's hand does so and then leaves it
+    # there for the robot to take: her own initiative (hold the closed bottle out to have it opened) would
+    # snatch it from under the hand closing on it, and the robot lifting it there looks like one offering it
+    w, s, hc = _setup(_arr({"zone": "HWS", "state": "closed"}, {"zone": "RWS", "state": "empty"}), profile="active")
+    hc.start("grasp", object="bottle", grip="ag")      # in her hand without her initiative: asked for it, say
+    _ok(_run_until_done(hc, s, 20.0, "grasp"), "grasp")
+    spot = (-0.06, 0.0)
+    s.place((spot[0], spot[1], layout.TABLE_Z + 0.30))      # the robot's open hand held above the spot
+    hc.hear("request:put_down_here", w.time)
+    _ok(_run_until_done(hc, s, 40.0, "put_down_for_robot"), "put_down_for_robot")
+    hc.run(4.0, robot=s.tick)
+    s.grasp_at("bottle")
+    s.move(s.pos + [0.0, 0.0, 0.08], duration=1.0)       # taken up where she set it down
+    hc.run(6.0, robot=s.tick)
+    assert s.view().offers == "bottle"
+    starts = [(e.what, e.detail.get("object")) for e in hc.events("start")]
+    assert starts[:2] == [("grasp", "bottle"), ("put_down_for_robot", None)], starts
+    assert not [b for b in starts[2:] if b[1] == "bottle"], starts        # (asking for the glass is hers to do)
+    assert w.state().human_holds is None

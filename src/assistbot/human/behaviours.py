@@ -416,8 +416,11 @@ def put_down_for_robot(c) -> Gen:
     tcp = yield from _robot_hand_still(c, lambda v: v.requests, MEET_STILL, 15.0)
     if tcp is None:
         return False, "the robot showed no place"
-    return (yield from put_down(c, held, at=(min(float(tcp[0]), UNDER_ROBOT_X_MAX), float(tcp[1])),
-                                under=float(tcp[2]) - UNDER_ROBOT_CLEARANCE))
+    ok, why = yield from put_down(c, held, at=(min(float(tcp[0]), UNDER_ROBOT_X_MAX), float(tcp[1])),
+                                  under=float(tcp[2]) - UNDER_ROBOT_CLEARANCE)
+    if ok:
+        c.policy_state["left_for_robot"] = held     # hers no more, until the robot has taken it
+    return ok, why
 
 
 def hand_to_robot(c, object: str, grip: str | None = None, timeout: float = 40.0) -> Gen:

@@ -41,6 +41,15 @@ def _scene(c) -> dict:
     return out
 
 
+def _left_for_robot(c) -> str | None:
+    """What she has set down for the robot to take (`put_down_for_robot`) and it has not yet taken to its side."""
+    left = c.policy_state.get("left_for_robot")
+    if left is not None and _scene(c)[left + "_x"] > 0:
+        del c.policy_state["left_for_robot"]
+        left = None
+    return left
+
+
 def response_to_tag(c, tag: str) -> list[tuple[str, dict]]:
     kind = TAG_RESPONSES.get(tag)
     what = tag.split(":", 1)[1] if ":" in tag else ""
@@ -83,8 +92,8 @@ def response_to_sight(c, key: str) -> list[tuple[str, dict]]:
     if key.startswith("robot_offers:") and c.profile.initiative:
         what = key.split(":", 1)[1]
         holding = c.world.human_holding()
-        if holding == what:
-            return []
+        if holding == what or what == _left_for_robot(c):
+            return []       # (lifted from where she set it down for the robot: taken, not offered)
         return _put_down_first(holding, what) + [("take_from_robot", {"object": what})]
     return []
 
@@ -123,17 +132,20 @@ def next_move(c) -> tuple[str, dict] | None:
     st = c.policy_state
     if s["holding"] is not None:
         return None
-    if s["glass_x"] < 0 and s["glass_full"] and not st.get("drink"):
+    # what the robot holds, or what she has set down for it to take, is the robot's to act on
+    left = _left_for_robot(c)
+    mine = {o: s[o + "_x"] < 0 and o not in (left, c.view.holds) for o in catalogue.TASK_OBJECTS}
+    if mine["glass"] and s["glass_full"] and not st.get("drink"):
         st["drink"] = True
         return ("drink", {})
-    if s["glass_x"] < 0 and s["glass_up"] < -0.7 and not st.get("turn"):
+    if mine["glass"] and s["glass_up"] < -0.7 and not st.get("turn"):
         st["turn"] = True
         return ("turn_glass", {})
-    if (s["bottle_x"] < 0 and not s["bottle_closed"] and s["glass_x"] < 0 and s["glass_up"] > 0.9 and not s["glass_full"]
+    if (mine["bottle"] and not s["bottle_closed"] and mine["glass"] and s["glass_up"] > 0.9 and not s["glass_full"]
             and not st.get("pour")):
         st["pour"] = True
         return ("pour", {"grip": c.profile.pour_grip})
-    if s["bottle_x"] < 0 and s["bottle_closed"] and not st.get("bottle"):
+    if mine["bottle"] and s["bottle_closed"] and not st.get("bottle"):
         st["bottle"] = True
         grip = c.profile.grip
         if c.rng.random() < c.profile.wrong_grip:
