@@ -109,7 +109,7 @@ class ObjectDetection:
     inside: bool = False                # off the image borders in both cameras
     on_robot: bool = False              # its silhouette ends on the robot's arm in a camera (its base may be hidden)
     lying: bool = False                 # on the table, on its side (`LYING_TILT`)
-    covered: bool = False               # the robot's arm over its image in a camera: what tells its state may be hidden
+    covered: bool = False               # the robot's arm over its left image: what tells its state may be hidden
 
 
 @dataclass
@@ -505,7 +505,8 @@ class Detector:
         # covers part of it. (The triangulated top is no cue: the top rows of the two images are different
         # points of the rim, and the height it gives is off by several cm near the cameras)
         top_hidden = body is not None and any(body.covers(cam, roi.above()) for cam, roi in zip(cams, rois))
-        det.covered = body is not None and any(body.covers(cam, cam.project(pos + _INSIDE[name])) for cam in cams)
+        # (in the left camera, whose image the state is read from: its crop and shape)
+        det.covered = body is not None and body.covers(cams[0], cams[0].project(pos + _INSIDE[name]))
         det.lying = bool(on_table and inside and not det.on_robot and not top_hidden
                          and min(roi.upright_tilt() for roi in rois) >= LYING_TILT)
         self._object_features(det, rois, cams, pos)
