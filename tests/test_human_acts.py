@@ -564,3 +564,20 @@ def test_what_she_set_down_for_the_robot_she_leaves_to_it():
     assert starts[:2] == [("grasp", "bottle"), ("put_down_for_robot", None)], starts
     assert not [b for b in starts[2:] if b[1] == "bottle"], starts        # (asking for the glass is hers to do)
     assert w.state().human_holds is None
+
+
+def test_a_remark_of_the_robot_does_not_break_off_what_she_does_at_its_request():
+    # asked to set "it" down under the robot's hand, she first fetches the glass: the robot remarking on what
+    # it sees meanwhile (a remark, asking nothing) leaves the fetch and the setting down to go on
+    w, s, hc = _setup(_arr({"zone": "RWS", "state": "closed"}, {"zone": "HWS", "state": "empty"}))
+    hc.policy_state["offered"] = "glass"          # as `hand_to_robot` leaves it
+    spot = (-0.06, 0.0)
+    s.place((spot[0], spot[1], layout.TABLE_Z + 0.30))      # the robot's open hand held above the spot
+    hc.hear("request:put_down_here", w.time)
+    while hc.current is None and w.time < 5.0:
+        hc.run(0.1, robot=s.tick)
+    assert hc.current is not None and hc.current.name == "grasp"
+    hc.hear("understood:request", w.time)
+    _ok(_run_until_done(hc, s, 40.0, "put_down_for_robot"), "put_down_for_robot")
+    assert [e.what for e in hc.events("start")] == ["grasp", "put_down_for_robot"]
+    assert not hc.events("failed")

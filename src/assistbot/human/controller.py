@@ -121,8 +121,9 @@ class HumanController:
                 self._answers_sight.pop(_key(resp), None)
         busy = self.current is not None and self.current.name in policy.UNINTERRUPTIBLE
         goes_on = self.current is not None and any(name in policy.CONTINUES.get(self.current.name, ()) for name, _ in self._pending)
-        if self._pending and self.current is not None and (not busy or goes_on):
-            # the robot asked for something: stop waiting for what we were doing, answer it
+        if answers and self.current is not None and (not busy or goes_on):
+            # the robot asked for something: stop waiting for what we were doing, answer it (a remark asks
+            # nothing: what she does, at an earlier request say, goes on)
             b = self.current
             b.status, b.reason, b.t_end = Status.FAILED, f"interrupted by the robot ({tag})", self.t
             self.log.append(Event(self.t, Status.FAILED.value, b.name, {"reason": b.reason, **b.args}))
