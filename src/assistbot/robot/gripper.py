@@ -58,6 +58,7 @@ class Gripper:
         self.command: float | np.ndarray = OPEN   # one angle for all fingers, or one each while easing open
         ws = model.sensor("robot_wrist_force")
         self._wrist = slice(int(ws.adr[0]), int(ws.adr[0]) + 3)
+        self._wrist_site = int(ws.objid[0])     # the sensor's frame: where the arm's joints put it
         self.reach_above, self.reach_below = hand_extent(model)
 
     def open(self, amount: float = 1.0) -> None:
@@ -112,6 +113,11 @@ class Gripper:
     def wrist_force(self) -> np.ndarray:
         """The wrist force-torque sensor's force (N, in the wrist frame): the hand's and its load's weight and pulls."""
         return self.data.sensordata[self._wrist].copy()
+
+    def wrist_force_world(self) -> np.ndarray:
+        """`wrist_force` turned into the world's axes by the wrist's orientation (the arm's own kinematics): the
+        same load reads the same however the hand has turned."""
+        return self.data.site_xmat[self._wrist_site].reshape(3, 3) @ self.data.sensordata[self._wrist]
 
     def fully_closed(self) -> bool:
         """True when the fingers closed on nothing (all curled onto the palm)."""

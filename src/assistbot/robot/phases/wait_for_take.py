@@ -27,7 +27,7 @@ class WaitForTake(WaitFor):
     who cannot quite reach it."""
 
     PULL_N = 0.8
-    REST_SECONDS = 0.3   # the force at rest is read after this
+    REST_SECONDS = 0.3   # the force at rest is read after this (and compared again this long after a bring)
     FELT_TICKS = 2       # in a row: one jolt is not a pull
     MEET_STILL = 2.5     # s the reaching hand keeps still before the object is brought to it (longer than
                          # a reach pauses on its way, at the approach pose)
@@ -83,19 +83,21 @@ class WaitForTake(WaitFor):
         s = (t - t0) / self.MEET_SECONDS
         prim.robot.move_toward(poses.interpolate(origin, goal, poses.min_jerk(min(1.0, s))), dt)
         if s >= 1.0:
-            # the hand is there: the force at rest is read anew, and the person's hand watched anew
-            self._bringing, self._rest, self._rest_at, self._hand = None, None, t + self.REST_SECONDS, []
+            # the hand is there: the force at rest (in the world's axes) stays what it was (read anew, it would
+            # take in a grip that closed while the object came, and her pull would never be felt); it is compared
+            # again once the bring's jolt has settled, and the person's hand is watched anew
+            self._bringing, self._rest_at, self._hand = None, t + self.REST_SECONDS, []
 
     def tick(self, prim, dt, t):
         if self._bringing is not None:
             self._bring(prim, dt, t)
             return Status.RUNNING, ""
-        force = prim.robot.gripper.wrist_force()
+        force = prim.robot.gripper.wrist_force_world()
         off_rest: float | None = None   # N the wrist's force lies from rest, once that is read
         if self._rest is None:
             if t >= self._rest_at:
                 self._rest, off_rest = force, 0.0
-        else:
+        elif t >= self._rest_at:
             off_rest = float(np.linalg.norm(force - self._rest))
             self._felt = self._felt + 1 if off_rest > self.PULL_N else 0
         if self.meet is not None and self._meets < self.MEET_TRIES and off_rest is not None and off_rest <= self.TOUCH_N:
