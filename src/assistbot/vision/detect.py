@@ -88,7 +88,7 @@ _OUTLINE = {n: np.vstack([np.column_stack([catalogue.radius(n) * np.cos(_ANG), c
 #: points all over an upright object's image, off its edges (an arm beside it does not lie across it): its axis at
 #: five heights and its base and top rings drawn in to INSIDE_R of its radius
 INSIDE_R = 0.6
-_INSIDE = {n: np.vstack([INSIDE_R * _OUTLINE[n] * [1, 1, 0] + _OUTLINE[n] * [0, 0, 1],
+_INSIDE = {n: np.vstack([_OUTLINE[n] * [INSIDE_R, INSIDE_R, 1.0],
                          np.column_stack([np.zeros(5), np.zeros(5), np.linspace(0.0, HEIGHT[n], 5)])]) for n in HEIGHT}
 
 
