@@ -197,6 +197,64 @@ def test_working_hand_touching_the_resting_arm_in_the_image_is_found_not_the_res
     world.reset()
 
 
+def test_a_hand_whose_fingers_one_camera_loses_is_placed_by_the_other():
+    """The open hand held out, its fingers taken off the right image (painted the table's colour, as pale
+    fingers on the pale table come apart from the palm there): the two views' ends then lie on different rows,
+    and triangulated as one point they put the hand toward the cameras. The hand is placed where the whole
+    pair puts it; with the correspondence check taken out, several cm off."""
+    import cv2
+
+    from assistbot.vision import detect
+    from assistbot.vision.calibration import _SEG
+    from assistbot.vision.library import load_calibration
+    det = detect.Detector(load_calibration())
+    world = build_world(PAPER_ARRANGEMENTS["fig3"], 0)
+    pose(world, SceneSampler(2, "test").sample("open_palm_request"))
+    with StereoCapture(world.model, threaded=False) as cap:
+        f = cap.grab(world.data)
+        seg = cap.segmentation(world.data)[1]
+    whole = det(f.left, f.right, f.cams).hand
+    assert whole.visible
+    rows = np.arange(seg.shape[0])[:, None]
+    fingers = (seg == _SEG["skin"]) & (rows > whole.uv[1] - 6)
+    table = np.median(f.right[(seg == _SEG["table"]) & (np.abs(rows - whole.uv[1]) < 15)], axis=0)
+    right = f.right.copy()
+    right[cv2.dilate(fingers.astype(np.uint8), np.ones((3, 3), np.uint8)) > 0] = table
+    cut = det(f.left, right, f.cams).hand
+    assert cut.visible and np.linalg.norm(cut.position - whole.position) < 0.02
+    one_point = detect._one_point
+    try:
+        detect._one_point = lambda ends, roots, skin: ends
+        unchecked = det(f.left, right, f.cams).hand
+    finally:
+        detect._one_point = one_point
+    assert unchecked.visible and np.linalg.norm(unchecked.position - whole.position) > 0.03
+
+
+def test_the_view_that_lost_the_fingers_takes_its_end_from_the_other():
+    """Skin rows as partner 1060's open hand showed them: the left view down to the fingers (row 82), the right
+    one down to the palm (row 66); the disparity grows along the arm, 24 px at the shoulder end to 30 at the
+    fingers. The right view's end is put on the left's row at the disparity carried on along the arm."""
+    from assistbot.vision.detect import _one_point
+
+    def arm(last_row: float, disparity_at) -> np.ndarray:
+        return np.array([(u - disparity_at(v), v) for v in np.arange(22.5, last_row + 1, 2.0)
+                         for u in np.arange(200.5 + 0.1 * (v - 22.5), 216.5 + 0.1 * (v - 22.5), 2.0)])
+
+    def disparity(v):
+        return 24.0 + 0.1 * (v - 22.5)
+
+    left, right = arm(82.5, lambda v: 0.0), arm(66.5, disparity)
+    ends = [np.array([212.0, 78.0]), np.array([192.0, 62.0])]
+    roots = [np.array([208.0, 24.0]), np.array([184.0, 24.0])]
+    kept, placed = _one_point(ends, roots, [left, right])
+    assert np.allclose(kept, ends[0])
+    assert placed[1] == ends[0][1] and abs(placed[0] - (ends[0][0] - disparity(78.0))) < 0.5
+    # the other way round: the right view the fuller one
+    placed, kept = _one_point(ends[::-1], roots[::-1], [right, left])
+    assert np.allclose(kept, ends[0]) and placed[1] == ends[0][1] and abs(placed[0] - (ends[0][0] - disparity(78.0))) < 0.5
+
+
 def test_seeded_labelled_set_meets_goals_minus_margin():
     s = evaluate(60, seed=7, purpose="test")
     assert s.accuracy(("bottle", "glass")) >= GOAL_OBJECT - MARGIN_OBJECT, s.report()

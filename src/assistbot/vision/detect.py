@@ -39,6 +39,7 @@ from dataclasses import dataclass, field
 
 import cv2
 import numpy as np
+from scipy.stats import theilslopes
 
 from assistbot import catalogue
 from assistbot.vision import _kernels
@@ -71,6 +72,11 @@ STATIC_SKIN_R = 0.08       # m: skin this close to a calibrated static spot is n
 STATIC_MARGIN = 2          # half-resolution px (~1-2 cm at the table) around the static cells' projections
 HAND_REACH = 0.10          # m: hand crop half-size
 BEYOND_TIP_PX = 3.0        # px past the hand skin's farthest pixel where the robot's arm, if it is there, hides the rest
+#: px: the head's cameras are a rectified pair (one orientation, side by side), so one point lies on the same image
+#: row in both; hand ends whose rows differ by more are not one point (one view's skin is cut short)
+SAME_ROW_PX = 4.0
+#: the fewest skin rows both views share that place one view's end by the other's (`_one_point`)
+MIN_SHARED_ROWS = 4
 HOG_CELL, HOG_BINS = 8, 6  # the hand crops' gradient histograms: cells (px) and orientations
 AT_GLASS_PX = 3            # half-resolution px (about 2-3 cm at the hand) around the hand's end ...
 AT_GLASS_MIN = 2           # ... holding at least this many glass pixels in each camera: the hand is at the glass
@@ -178,6 +184,32 @@ def _match(a: Blob, cands: list[Blob]) -> Blob | None:
         if s < score:
             best, score = b, s
     return best
+
+
+def _one_point(ends: list[np.ndarray], roots: list[np.ndarray], skin: list[np.ndarray]) -> list[np.ndarray]:
+    """The hand's end in the two images (u, v) as one point of the hand. In one view the fingers may be
+    segmented off the palm (pale fingers on the pale table, a finger's shading), and that view's end then lies
+    at the palm, rows short of the other's: triangulated as one point, the pair puts the hand tens of cm off.
+    Ends on different rows (SAME_ROW_PX) are taken from the view whose end lies farther along the arm in rows
+    (the fuller outline: a row is the same in both views, a length in pixels is not), and the other's is
+    placed on the same row at the disparity the skin rows both views share give there: in a rectified pair
+    (u, v, disparity) is a projective image of the world, so along the arm and hand the disparity is close
+    to linear in the row; a line through the rows' disparities (their mean columns' differences) is carried
+    on to the end's row."""
+    if abs(float(ends[0][1] - ends[1][1])) <= SAME_ROW_PX:
+        return ends
+    down = float(np.sign(ends[0][1] - roots[0][1] + ends[1][1] - roots[1][1]))    # the way the arm runs in rows
+    k = int(down * float(ends[1][1]) > down * float(ends[0][1]))
+    v = float(ends[k][1])
+    shared = np.intersect1d(np.unique(skin[0][:, 1]), np.unique(skin[1][:, 1]))
+    if shared.size < MIN_SHARED_ROWS:
+        return ends
+    u = [np.array([P[P[:, 1] == r, 0].mean() for r in shared]) for P in skin]
+    slope, at0, _, _ = theilslopes(u[0] - u[1], shared)     # robust to a row or two of one view's stray skin
+    disparity = float(at0 + slope * v)
+    out = [np.asarray(e, float).copy() for e in ends]
+    out[1 - k] = np.array([float(ends[k][0]) + (disparity if k == 1 else -disparity), v])
+    return out
 
 
 def outline_hog(crop: np.ndarray) -> np.ndarray:
@@ -570,7 +602,7 @@ class Detector:
         if best is None:
             return HandDetection(False)
         a, b, X = best
-        ends, roots, spread = [], [], []
+        ends, roots, spread, skin = [], [], [], []
         end_on_robot = False
         for L, bb, cc, cam in ((lab[0], a, cl, cams[0]), (lab[1], b, cr, cams[1])):
             x, y, w, h = (v // 2 for v in bb.bbox)
@@ -591,6 +623,7 @@ class Detector:
             end = far.sum(axis=0) / len(far)           # far.mean(axis=0)
             ends.append(end)
             roots.append(root)
+            skin.append(P)
             if body is not None and not end_on_robot:
                 # just beyond the skin's farthest pixel, along the arm and to either side: the robot's arm
                 # there hides the rest of the hand (its fingers), and the end seen falls short
@@ -609,6 +642,7 @@ class Detector:
                 dev = pr - pr.sum(axis=0, keepdims=True) / len(pr)
                 sd = np.sqrt((dev * dev).sum(axis=0) / len(pr))
                 spread = [float(sd[0]), float(sd[1]), float(len(far))]
+        ends = _one_point(ends, roots, skin)
         Xd, Xr = triangulate(cams[0], cams[1], np.array([ends[0], roots[0]]), np.array([ends[1], roots[1]]))
         at_glass = all(_labels_near(L, end, _G, _L, AT_GLASS_PX) >= AT_GLASS_MIN for L, end in zip(lab, ends))
         # the hand's skin around its end in each camera: the left one, at the template size, is matched
