@@ -190,17 +190,21 @@ def _one_point(ends: list[np.ndarray], roots: list[np.ndarray], skin: list[np.nd
     """The hand's end in the two images (u, v) as one point of the hand. In one view the fingers may be
     segmented off the palm (pale fingers on the pale table, a finger's shading), and that view's end then lies
     at the palm, rows short of the other's: triangulated as one point, the pair puts the hand tens of cm off.
-    Ends on different rows (SAME_ROW_PX) are taken from the view whose end lies farther along the arm in rows
-    (the fuller outline: a row is the same in both views, a length in pixels is not), and the other's is
-    placed on the same row at the disparity the skin rows both views share give there: in a rectified pair
-    (u, v, disparity) is a projective image of the world, so along the arm and hand the disparity is close
-    to linear in the row; a line through the rows' disparities (their mean columns' differences) is carried
-    on to the end's row."""
+    A row is the same in both views of a rectified pair (a length in pixels is not). Ends on rows more than
+    SAME_ROW_PX apart, where the other view's skin stops short of the fuller view's end row (the view whose
+    end lies farther along the arm), are taken from the fuller view; the other's end is put on the same row
+    at the disparity the skin rows both views share give there. (u, v, disparity) being a projective image
+    of the world, along the arm and hand the disparity is close to linear in the row: a line through the
+    shared rows' disparities (their mean columns' differences) is carried on to the end's row. Where both
+    views' skin reaches the row, each view's end is its own outline's and is kept."""
     if abs(float(ends[0][1] - ends[1][1])) <= SAME_ROW_PX:
         return ends
     down = float(np.sign(ends[0][1] - roots[0][1] + ends[1][1] - roots[1][1]))    # the way the arm runs in rows
     k = int(down * float(ends[1][1]) > down * float(ends[0][1]))
     v = float(ends[k][1])
+    last = float((down * skin[1 - k][:, 1]).max())     # the other view's skin row farthest along the arm
+    if down * v - last <= SAME_ROW_PX:
+        return ends      # the other view's skin reaches the end's row: both see the hand's end, each its own way
     shared = np.intersect1d(np.unique(skin[0][:, 1]), np.unique(skin[1][:, 1]))
     if shared.size < MIN_SHARED_ROWS:
         return ends
