@@ -196,6 +196,23 @@ def test_hand_to_robot(obj, grip, where):
     assert st.objects[obj].pos[0] > 0.1                       # the stand-in carried it into the RWS
 
 
+def test_asked_again_for_what_she_is_handing_over_she_does_not_hand_it_over_twice():
+    # the robot asks for the glass a second time while she holds it out: once it has taken the glass, the
+    # request queued meanwhile is stale, and she does not reach for the glass in the robot's hand
+    arr = {"glass": {"zone": "HWS", "state": "empty", "position": [-0.28, 0.05]}, "bottle": {"zone": "RWS", "state": "open"}}
+    w, s, hc = _setup(Arrangement.from_mapping(arr))
+    s.take_when_offered = "glass"
+    hc.hear("request:glass", w.time)
+    while (hc.current is None or hc.current.name != "hand_to_robot") and w.time < 5.0:
+        hc.run(0.1, robot=s.tick)
+    hc.hear("request:glass", w.time)
+    _ok(_run_until_done(hc, s, 25.0, "hand_to_robot"), "hand_to_robot")
+    hc.run(6.0, robot=s.tick)
+    assert [e.what for e in hc.events("start")] == ["hand_to_robot"]
+    assert [e.detail.get("object") for e in hc.events("note") if e.what == "dropped"] == ["glass"]
+    assert s.holds() == "glass" and w.state().human_holds is None
+
+
 @pytest.mark.parametrize("obj,at,glass_zone", [("glass", (0.0, -0.05, 0.78), "RWS"), ("bottle", (-0.02, 0.05, 0.80), "HWS")])
 def test_take_from_robot(obj, at, glass_zone):
     w, s, hc = _setup(_arr({"zone": "RWS", "state": "open"}, {"zone": glass_zone, "state": "empty"}))

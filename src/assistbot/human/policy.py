@@ -121,6 +121,9 @@ def still_relevant(c, name: str, args: dict) -> bool:
         return c.world.human_holding() is None and (offered is None or args.get("object") in (None, offered))
     if name == "put_down":
         return c.world.human_holding() is not None
+    if name == "hand_to_robot":
+        # asked twice for what she was handing over: once the robot has it, there is nothing left to hand
+        return args.get("object") is None or c.view.holds != args["object"]
     if name == "pull_stopper":
         return bool(c.world.data.eq_active[c.world.eq_stopper])
     return True
