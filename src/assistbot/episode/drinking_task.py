@@ -17,7 +17,9 @@ from assistbot.episode.touch import TouchMonitor
 from assistbot.interfaces import ActionRecord, PartnerEvent
 from assistbot.task import DRINK_FRACTION
 
-#: the bodies of the person a robot must keep its distance from (the safety measure); the hand is not one
+#: the bodies of the person a robot must keep its distance from (the safety measure); the working arm and
+#: hand are not among them. ``human_body`` carries, besides the torso, the neck and the head, the legs, the
+#: chair and the resting left arm and hand on the table: the measure is the nearest of all of those
 PERSON_TRUNK = ("human_body", "human_head", "human_torso")
 
 
@@ -122,9 +124,9 @@ class DrinkingTask:
         return pairs[:, 0], pairs[:, 1]
 
     def _distance_to_trunk(self) -> float:
-        """Smallest robot-to-head/torso surface distance.  Pairs are tried nearest bounding spheres first
-        and the search stops once no remaining pair can be closer, so the exact distance costs a few
-        geometry queries instead of one per pair."""
+        """Smallest robot-to-`PERSON_TRUNK` surface distance (head, torso, and the resting left arm among them).
+        Pairs are tried nearest bounding spheres first and the search stops once no remaining pair can be
+        closer, so the exact distance costs a few geometry queries instead of one per pair."""
         m, d = self.world.model, self.world.data
         a, b = self._distance_pairs
         bound = np.linalg.norm(d.geom_xpos[a] - d.geom_xpos[b], axis=1) - m.geom_rbound[a] - m.geom_rbound[b]
