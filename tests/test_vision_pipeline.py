@@ -253,6 +253,10 @@ def test_the_view_that_lost_the_fingers_takes_its_end_from_the_other():
     # the other way round: the right view the fuller one
     placed, kept = _one_point(ends[::-1], roots[::-1], [right, left])
     assert np.allclose(kept, ends[0]) and placed[1] == ends[0][1] and abs(placed[0] - (ends[0][0] - disparity(78.0))) < 0.5
+    # both views' skin reaching the rows of both ends (fingers round a glass, each view seeing them its own way):
+    # each end is its own view's, kept
+    whole = arm(82.5, disparity)
+    assert all(np.array_equal(a, b) for a, b in zip(_one_point(ends, roots, [left, whole]), ends))
 
 
 def test_seeded_labelled_set_meets_goals_minus_margin():
