@@ -117,7 +117,7 @@ class Gripper:
     def wrist_force_world(self) -> np.ndarray:
         """`wrist_force` turned into the world's axes by the wrist's orientation (the arm's own kinematics): the
         same load reads the same however the hand has turned."""
-        return self.data.site_xmat[self._wrist_site].reshape(3, 3) @ self.data.sensordata[self._wrist]
+        return self.data.site_xmat[self._wrist_site].reshape(3, 3) @ self.wrist_force()
 
     def fully_closed(self) -> bool:
         """True when the fingers closed on nothing (all curled onto the palm)."""
