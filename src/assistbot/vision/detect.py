@@ -46,6 +46,7 @@ from assistbot.vision import _kernels
 from assistbot.vision.body import RobotBody
 from assistbot.vision.camera import CameraModel, expected_boxes, on_plane, triangulate
 from assistbot.vision.segment import LABEL, Blob, ColourTable, blob_pixels, components_each, count_near, first_row_over, masked_saturation
+from assistbot.world.layout import TABLE_HALF_X
 
 cv2.setNumThreads(1)   # per-frame work on small images: OpenCV's thread pool costs more than it saves
 
@@ -597,8 +598,9 @@ class Detector:
                     continue      # not over the table: floor, background
                 if X[2] > FACE_Z:
                     continue      # the face (a hand at the mouth merges with it: the drink is read from the glass)
-                if min(a.bbox[1], b.bbox[1]) <= 1:
-                    continue      # cut by the image's top: the face with the head tilted down (its centroid then misses the static spot)
+                if min(a.bbox[1], b.bbox[1]) <= 1 and X[0] < -TABLE_HALF_X:
+                    continue      # cut by the image's top beyond the table's edge: the face with the head tilted down (its
+                    # chin's centroid is lower than FACE_Z); a hand raised over the table (round the stopper) is cut there too
                 if ns:
                     continue
                 if best is None or a.area > best[0].area:
