@@ -4,9 +4,10 @@ Renders labelled scenes (the "library" seed stream: never used for scoring) from
 cameras over random arrangements, object positions, hand postures and head angles, and writes
 small prototype PNGs, index.json (classes, prototypes, labelled feature examples) and
 calibration.json.  Deterministic for a seed: the same seed rewrites identical files.
-The scenes show the default person; with --partners A:B, 70 % of them show people of those
-population seeds instead (the library seeds are 0-999; experiments on unseen partners use
-seeds from 1000); their scenes that a body cannot pose (out of its reach) are skipped.
+30 % of the scenes show the default person and 70 % people of the population seeds --partners
+(default: the library seeds 0-999, population.LIBRARY_SEEDS; experiments on unseen partners
+use seeds from 1000); their scenes that a body cannot pose (out of its reach) are skipped.
+--partners none builds a library of the default person alone.
 With --check it only loads the library (exit 2 with a message if it is missing).
 """
 
@@ -23,19 +24,21 @@ ORDER = 40
 
 def add_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument("--seed", type=int, default=0, help="library seed (default 0)")
-    p.add_argument("--scenes", type=int, default=3240, help="labelled scenes to render (default 3240, 360 per hand posture)")
+    p.add_argument("--scenes", type=int, default=6480, help="labelled scenes to render (default 6480, 720 per hand posture)")
     p.add_argument("--out", type=Path, default=None, help="output folder (default: the package's assistbot/assets/templates)")
-    p.add_argument("--partners", default="none", metavar="A:B|none",
-                   help="population seeds whose people 70 %% of the scenes show (population.LIBRARY_SEEDS is 0:999); "
-                        "default none: the default person only, as the shipped library")
+    p.add_argument("--partners", default=None, metavar="A:B|none",
+                   help="population seeds whose people 70 %% of the scenes show (default: population.LIBRARY_SEEDS, "
+                        "as the shipped library); none: the default person only")
     p.add_argument("--check", action="store_true", help="only check that the library loads")
 
 
-def _partners(text: str):
-    """--partners: () for 'none', or the population seeds A:B."""
+def _partners(text: str | None):
+    """--partners: the library seeds when not given, () for 'none', or the population seeds A:B."""
     from assistbot.errors import UserError
-    from assistbot.human.population import parse_seed_range
+    from assistbot.human.population import LIBRARY_SEEDS, parse_seed_range
 
+    if text is None:
+        return LIBRARY_SEEDS
     if text.strip().lower() == "none":
         return ()
     try:
