@@ -197,6 +197,34 @@ def test_working_hand_touching_the_resting_arm_in_the_image_is_found_not_the_res
     world.reset()
 
 
+def test_a_hand_raised_to_the_stopper_and_cut_by_the_top_of_the_view_is_the_hand_not_the_face(world, monkeypatch):
+    """Pulling the stopper, the hand is raised over the bottle and the top of both head cameras' images cuts its
+    skin, as it cuts the face of a person bending her head.  Skin cut there is taken for the face only beyond
+    the table's edge: these hands are seen and read as pulling the stopper.  Cut skin dropped wherever it
+    lies (the rule before), none of them is seen."""
+    from assistbot.vision import detect
+    from assistbot.vision.calibration import _SEG
+
+    vision = Vision()
+    sampler = SceneSampler(3, "test")
+    specs = [sampler.sample("remove_stopper") for _ in range(40)]
+    with StereoCapture(world.model, threaded=False) as cap:
+        for k in (1, 18, 21, 22, 35, 39):
+            lab = pose(world, specs[k])
+            f = cap.grab(world.data)
+            truth = np.array(lab.hand_position)
+            for seg, cam in zip(cap.segmentation(world.data), f.cams):   # the hand's own skin reaches the top rows
+                u = cam.project(truth)[0][0]
+                assert np.any(seg[:2, max(0, int(u) - 40):int(u) + 40] == _SEG["skin"]), k
+            hand = vision.perceive(f).hand
+            assert hand.seen and hand.posture == "remove_stopper", (k, hand.posture)
+            assert np.linalg.norm(np.array(hand.position) - truth) < 0.15, k
+            with monkeypatch.context() as m:
+                m.setattr(detect, "TABLE_HALF_X", -10.0)       # every skin blob cut by the top taken for the face
+                assert not vision.detector(f.left, f.right, f.cams).hand.visible, k
+    world.reset()
+
+
 def test_a_hand_whose_fingers_one_camera_loses_is_placed_by_the_other():
     """The open hand held out, its fingers taken off the right image (painted the table's colour, as pale
     fingers on the pale table come apart from the palm there): the two views' ends then lie on different rows,
