@@ -24,7 +24,9 @@ ORDER = 40
 
 def add_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument("--seed", type=int, default=0, help="library seed (default 0)")
-    p.add_argument("--scenes", type=int, default=6480, help="labelled scenes to render (default 6480, 720 per hand posture)")
+    from assistbot.resources import LIBRARY_SCENES
+
+    p.add_argument("--scenes", type=int, default=LIBRARY_SCENES, help=f"labelled scenes to render (default {LIBRARY_SCENES})")
     p.add_argument("--out", type=Path, default=None, help="output folder (default: the package's assistbot/assets/templates)")
     p.add_argument("--partners", default=None, metavar="A:B|none",
                    help="population seeds whose people 70 %% of the scenes show (default: population.LIBRARY_SEEDS, "

@@ -24,7 +24,7 @@ import numpy as np
 
 from assistbot import catalogue
 from assistbot.cognition.percept import STANDING_Z, HandPercept, ObjectPercept, Percept, away_from_hand
-from assistbot.resources import TEMPLATES
+from assistbot.resources import LIBRARY_SCENES, TEMPLATES
 from assistbot.task import OBJECT_STATES
 from assistbot.vision import library
 from assistbot.vision.capture import StereoFrame
@@ -292,7 +292,7 @@ class Vision:
 LIBRARY_DEFAULT_SHARE = 0.3
 
 
-def build_library(seed: int = 0, n_scenes: int = 3240, root=None, progress=None, partners=(),
+def build_library(seed: int = 0, n_scenes: int = LIBRARY_SCENES, root=None, progress=None, partners=(),
                   default_share: float = LIBRARY_DEFAULT_SHARE) -> list:
     """Calibrate, render library scenes, and write prototypes + examples to assets/templates/.
 
