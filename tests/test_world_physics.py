@@ -115,11 +115,10 @@ def test_a_full_glass_shaken_as_by_a_tremor_keeps_its_liquid():
     j = m.joint("glass_free")
     qa, va = j.qposadr[0], j.dofadr[0]
     p0 = d.qpos[qa:qa + 3].copy()
-    amp, f, t0 = 0.018, 7.8, d.time
+    amp, w_, t0 = 0.018, 2 * np.pi * 7.8, d.time
     while d.time - t0 < 5.0:      # the glass moved as a hand would move it: lifted 10 cm in 1 s, then shaken
         t = d.time - t0
         rise, on = min(1.0, t), min(1.0, max(0.0, t - 1.0) / 0.5)
-        w_ = 2 * np.pi * f
         d.qpos[qa:qa + 7] = [p0[0], p0[1], p0[2] + 0.10 * rise + on * amp * np.sin(w_ * t), 1, 0, 0, 0]
         d.qvel[va:va + 6] = [0, 0, (0.10 if t < 1.0 else 0.0) + on * amp * w_ * np.cos(w_ * t), 0, 0, 0]
         w.step(1)

@@ -17,6 +17,8 @@ import argparse
 import sys
 from pathlib import Path
 
+from assistbot.resources import LIBRARY_SCENES
+
 NAME = "templates"
 HELP = "build the vision template library (assets/templates/) from rendered labelled scenes"
 ORDER = 40
@@ -24,8 +26,6 @@ ORDER = 40
 
 def add_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument("--seed", type=int, default=0, help="library seed (default 0)")
-    from assistbot.resources import LIBRARY_SCENES
-
     p.add_argument("--scenes", type=int, default=LIBRARY_SCENES, help=f"labelled scenes to render (default {LIBRARY_SCENES})")
     p.add_argument("--out", type=Path, default=None, help="output folder (default: the package's assistbot/assets/templates)")
     p.add_argument("--partners", default=None, metavar="A:B|none",
