@@ -152,11 +152,19 @@ def _move(c, p, R=None, speed: float | None = None, tol: float = MOVE_TOL,
           stop: Callable[[], bool] | None = None) -> Generator[None, None, bool]:
     """Reach to p (with rotation R); True when the hand got there (or `stop()` became true on the way:
     the hand then stays where it is).  An object in the hand is carried over, not through, the objects
-    standing near the way (`_carry_height`): the hand first rises, crosses, then comes down."""
-    for over in _carry_path(c, p):
-        if not (yield from _move_straight(c, over, R, speed, MOVE_TOL, stop)):
+    standing near the way (`_carry_height`): the hand first rises, crosses, then comes down. A reach the
+    arm cannot make from where it is (a joint at its limit on the way, which a narrowed range of motion
+    makes likely) goes back by the resting place first, as a person starts an awkward reach afresh, when
+    the arm can make it from there (both known beforehand: `HumanArm.rehearse`)."""
+    moves = [(over, R, speed, MOVE_TOL) for over in _carry_path(c, p)] + [(p, R, speed, tol)]
+    if c.arm.rehearse(moves, c.t) < len(moves):
+        afresh = [(c.arm.own_point(REST), c.arm.R_rest, speed, MOVE_TOL)] + moves
+        if c.arm.rehearse(afresh, c.t) == len(afresh):
+            moves = afresh
+    for q, R_q, speed_q, tol_q in moves:
+        if not (yield from _move_straight(c, q, R_q, speed_q, tol_q, stop)):
             return False
-    return (yield from _move_straight(c, p, R, speed, tol, stop))
+    return True
 
 
 def _carry_path(c, p) -> list[np.ndarray]:
