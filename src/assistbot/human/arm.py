@@ -91,6 +91,10 @@ DEFAULT_SHOULDER, DEFAULT_REACH = shoulder_and_reach(arm_model())
 SHOULDER_XY = DEFAULT_SHOULDER[:2].copy()
 #: the direction (world) in which a tremor moves the hand: mostly up and down, partly sideways
 TREMOR_DIRECTION = np.array([0.0, 0.6, 0.8])
+#: s over which the tremor fades when the hand comes to rest on something the table bears, and returns when it is lifted
+TREMOR_SUPPORT_TAU = 0.15
+#: the hand trembles freely (and its tremor is measured, `tremor.Tremor.observe`) once it makes this much of it
+TREMOR_FREE = 0.99
 
 
 def own_point(p, shoulder: np.ndarray, reach: float) -> np.ndarray:
@@ -203,6 +207,7 @@ class HumanArm:
         self.tremor_amplitude = float(tremor_amplitude)
         self.tremor_frequency = float(tremor_frequency)
         self._tremor = Tremor(self.tremor_amplitude, self.tremor_frequency, TREMOR_DIRECTION, self.dt)
+        self._tremor_free = 1.0      # how much of the tremor the hand makes: none while the table bears what it holds
         self.d = mujoco.MjData(self.m)
         wm = world.model
         self._act = np.array([wm.actuator(j).id for j in HUMAN_ARM_JOINTS])
@@ -337,9 +342,17 @@ class HumanArm:
         moving = self.segment is not None and not self.segment.done(t)
         if not moving and self._settled and self.tremor_amplitude == 0.0:
             return  # holding still at the goal: the servo targets stand
-        if self.tremor_amplitude > 0.0 and self.world.human_holding() is None:
-            # the tremor is the free hand's: measured while it holds nothing (what it holds, or the table under
-            # it, damps it as it would a real one). Its deviation from the planned path is the tremor and slow
+        if self.tremor_amplitude > 0.0:
+            # a hand on something the table bears (about to close on it, or holding it there) trembles against the
+            # table, which stops it: the tremor is the muscles' oscillating force, and a position command that
+            # went on trembling would press the object into the table with a force no hand makes (and tear the
+            # grip open)
+            free = 0.0 if self.world.hand_braced() else 1.0
+            self._tremor_free += min(1.0, self.dt / TREMOR_SUPPORT_TAU) * (free - self._tremor_free)
+        if self.tremor_amplitude > 0.0 and self._tremor_free > TREMOR_FREE:
+            # the tremor is measured while the hand rests on nothing (the table under what it holds stops it), with
+            # what it holds too: the load lowers the arm's resonance toward the tremor band, and unregulated the
+            # held object swayed twice the drawn amplitude. Its deviation from the planned path is the tremor and slow
             # lags, which the lock-in ignores
             self._tremor.observe(t, self.hand_pose()[0] - self._planned(t)[0])
         q, biggest = self._follow(t, iterations)
@@ -359,7 +372,7 @@ class HumanArm:
         command, each joint moved at most its top speed; and the largest step taken."""
         p_t, R_t = self._planned(t + self.dt)
         if self.tremor_amplitude > 0.0:
-            p_t = p_t + self.tremor(t + self.dt)
+            p_t = p_t + self._tremor_free * self.tremor(t + self.dt)
         q = self.q
         m, d = self.m, self.d
         for _ in range(iterations):
