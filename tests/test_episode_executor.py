@@ -138,3 +138,17 @@ def test_a_lost_frame_keeps_what_the_last_frame_showed(executor):
     # a frame that sees the hand empty ends it
     executor.see(_percept(HandPercept("none", seen=True)))
     assert not executor._human_holds("glass")
+
+
+def test_a_lifted_object_is_grasped_at_its_own_base_not_below_the_hand_seen_above_it(executor):
+    # the glass held out from above, placed by its own silhouette at 0.18 m; the hand's end is seen 5 cm higher
+    # than a person's own hand holds it: the glass's own base decides (a grasp 5 cm high puts a finger over the rim)
+    hand = HandPercept("grasp_ag", (-0.1, -0.03, 0.18 + 0.1 + 0.05), object_in_hand="glass", held_out=True)
+    executor.see(_percept(hand))
+    assert executor._lifted("held_out") == pytest.approx(0.18)
+    assert executor._lifted("glass") == pytest.approx(0.18)
+    # not placed (hidden by the robot's hand, say): from the hand that holds it
+    p = _percept(hand)
+    p.objects["glass"] = ObjectPercept("glass", "HWS", "full", (0.0, 0.0, 0.0), seen=False)
+    executor.see(p)
+    assert executor._lifted("held_out") == pytest.approx(0.23)

@@ -134,24 +134,25 @@ class RobotExecutor:
         return p.hand.object_in_hand == obj
 
     def _lifted(self, obj: str | None) -> float | None:
-        """Height (m above the table) of the base of ``obj`` held up by the person, as seen now: from the
-        object's own triangulated base and from the hand that holds it (at the object's top for a grip
-        from above, at its middle for one from the side); None when neither is seen."""
+        """Height (m above the table) of the base of ``obj`` held up by the person, as seen now: the object's own
+        triangulated base, else from the hand that holds it (at the object's top for a grip from above, at its
+        middle for one from the side); None when neither is seen. The object's own base is the one to trust
+        (vision_accuracy: lifted objects' bases within 1.1 cm in nine of ten frames, unseen people too); the hand's
+        end lies up to 5 cm above where a person's own hand holds it, and a glass grasped that high has a finger over
+        its rim, which then hooks it as the hand backs off (partner 1081). A grasp a little low is set down by feel
+        (`LowerUntilSupported`)."""
         p = self._percept
         if p is None or obj is None:
             return None
         h = p.hand
         name = h.object_in_hand if obj == "held_out" else obj
         o = p.objects.get(name) if name else None
-        seen = []
         if o is not None and o.seen and o.position[2] > STANDING_Z:
-            seen.append(float(o.position[2]))
+            return float(o.position[2])
         if h.seen and name is not None and h.object_in_hand == name:
             height = catalogue.height(name)
-            seen.append(float(h.position[2]) - (height if h.posture == "grasp_ag" else height / 2))
-        # the higher of the two: a hand over the top hides part of the object and vision then places it
-        # low, and a grasp too low cannot set the object down again (the palm meets the table first)
-        return max(seen) if seen else None
+            return float(h.position[2]) - (height if h.posture == "grasp_ag" else height / 2)
+        return None
 
     def _offered(self) -> bool:
         """The person still holds something out to the robot, as the frames of the last OFFER_WINDOW that
