@@ -45,6 +45,7 @@ def _seeds(text: str) -> range:
 def _side_by_side(default, unseen, label: str) -> str:
     import numpy as np
 
+    from assistbot.vision.evaluate import wilson
     from assistbot.vision.library import KINDS
 
     def cell(score, kind, cls=None) -> str:
@@ -54,7 +55,6 @@ def _side_by_side(default, unseen, label: str) -> str:
                 return f"{'-':>22}"
             lo, hi = score.interval(kind)
             return f"{score.accuracy(kind) * 100:5.1f}% [{lo * 100:4.1f},{hi * 100:5.1f}] {n:4d}"
-        from assistbot.vision.evaluate import wilson
         pairs = [(t, p) for t, p in zip(score.truth[kind], score.pred[kind]) if t == cls]
         if not pairs:
             return f"{'-':>22}"
@@ -71,6 +71,13 @@ def _side_by_side(default, unseen, label: str) -> str:
             lines.append(f"  {c:<24} {cell(default, kind, c)}   {cell(unseen, kind, c)}")
     objs = ("bottle", "glass")
     lines.append(f"{'object state (both)':<26} {default.accuracy(objs) * 100:5.1f}%{'':>16}   {unseen.accuracy(objs) * 100:5.1f}%")
+    def rate(k: int, n: int) -> str:
+        lo, hi = wilson(k, n)
+        return f"{k / n * 100:5.1f}% [{lo * 100:4.1f},{hi * 100:5.1f}] {n:4d}" if n else f"{'-':>22}"
+
+    held = (default.held_out_recall(), unseen.held_out_recall())
+    lines.append(f"{'held out, reported so':<26} {rate(held[0][0], held[0][1])}   {rate(held[1][0], held[1][1])}")
+    lines.append(f"{'not held out, reported so':<26} {rate(held[0][2], held[0][3])}   {rate(held[1][2], held[1][3])}")
     for name, attr in (("object position median", "pos_err"), ("hand position median", "hand_err")):
         a, b = (np.median(getattr(s, attr)) * 100 if getattr(s, attr) else float("nan") for s in (default, unseen))
         lines.append(f"{name:<26} {a:5.2f} cm{'':>14}   {b:5.2f} cm")

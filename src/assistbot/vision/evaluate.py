@@ -25,6 +25,7 @@ class Score:
     pos_err: list[float] = field(default_factory=list)
     pos_err_lifted: list[float] = field(default_factory=list)    # objects off the table (in a hand)
     hand_err: list[float] = field(default_factory=list)
+    held_out: list[tuple[bool, bool]] = field(default_factory=list)   # (truth, reported) of a hand seen holding out
     low_conf: dict[str, list[bool]] = field(default_factory=lambda: {o: [] for o in catalogue.TASK_OBJECTS})   # correct?
     unseen: dict[str, int] = field(default_factory=lambda: {k: 0 for k in KINDS})
     render_ms: list[float] = field(default_factory=list)
@@ -62,12 +63,21 @@ class Score:
                 self.pred["hand"].append(percept.hand.posture)
                 self.conf["hand"].append(float(percept.hand.confidence))
                 self.hand_err.append(float(np.linalg.norm(np.array(percept.hand.position) - np.array(labels.hand_position))))
+                self.held_out.append((bool(labels.held_out), bool(percept.hand.held_out)))
 
     def accuracy(self, kind: str | tuple[str, ...]) -> float:
         kinds = (kind,) if isinstance(kind, str) else kind
         t = sum((self.truth[k] for k in kinds), [])
         p = sum((self.pred[k] for k in kinds), [])
         return float(np.mean([a == b for a, b in zip(t, p)])) if t else float("nan")
+
+    def held_out_recall(self) -> tuple[int, int, int, int]:
+        """(held out and so reported, held out, not held out but reported so, not held out) over the hands seen:
+        whether the robot notices a thing held out to it, and how often it takes a hand at work for one."""
+        hit = sum(t and r for t, r in self.held_out)
+        pos = sum(t for t, _ in self.held_out)
+        false = sum(r and not t for t, r in self.held_out)
+        return hit, pos, false, len(self.held_out) - pos
 
     def by_confidence(self, kind: str, edges=(0.6, 0.9)) -> list[tuple[float, float, int, float]]:
         """Accuracy per confidence band (lo, hi]: (lo, hi, reports, accuracy), from the lowest band; how
@@ -122,6 +132,12 @@ class Score:
             if v:
                 lines.append(f"{o}: {len(v)} seen with a low-confidence state (<= {LOW_CONFIDENCE}: stopper hidden), "
                              f"not scored above; {sum(v)} of them right")
+        hit, pos, false, neg = self.held_out_recall()
+        if pos or neg:
+            (lo, hi), (flo, fhi) = wilson(hit, pos), wilson(false, neg)
+            lines.append(f"\nheld out: {hit} of {pos} hands holding out reported so ({hit / max(pos, 1) * 100:.1f}%, 95% interval "
+                         f"{lo * 100:.1f}-{hi * 100:.1f}); {false} of {neg} others reported held out ({false / max(neg, 1) * 100:.1f}%, "
+                         f"{flo * 100:.1f}-{fhi * 100:.1f})")
         e = np.array(self.pos_err) * 100
         if e.size:
             lines.append(f"\nobject position error: median {np.median(e):.2f} cm, 95th percentile {np.percentile(e, 95):.2f} cm, "
