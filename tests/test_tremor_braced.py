@@ -50,7 +50,10 @@ def test_a_trembling_hand_holds_an_object_on_the_table_as_a_still_one_does(frequ
     assert peak < 0.25 * HUMAN_GRIP_YIELD_FORCE, peak
     # lifted off the table again it trembles as a hand does (the still spell on the table is not taken for an
     # arm that hardly moves, to be driven harder): within the drawn amplitude, up and down, as the load lets it
-    assert _held_out_sway(w, hc) < 4 * AMPLITUDE
+    sway = _held_out_sway(w, hc)
+    assert hc.done[-1].name == "hold_out" and hc.done[-1].status.value == "succeeded", hc.done
+    assert w.human_holding() == "bottle" and not w.grip_yields
+    assert sway < 4 * AMPLITUDE, sway
 
 
 @pytest.mark.slow
