@@ -1,13 +1,20 @@
-"""A trembling hand that closes on an object standing on the table, and holds it there, trembles against the table
-and stops: its grip bears only what a still hand's does. Were the commanded tremor to go on, the hand would press
-the object into the table with a force no hand makes and tear its own grip open. In the physics."""
+"""A trembling hand braced on something stiff stops trembling: one that closes on an object standing on the table and
+holds it there, and one whose object the robot's hand has taken hold of. Its grip then bears only what a still
+hand's does. Were the commanded tremor to go on, the hand would press the object into the table, or pull it against
+the robot's fingers, with a force no hand makes and tear its own grip open. In the physics."""
 
 from __future__ import annotations
 
+import numpy as np
 import pytest
 
+from assistbot.human.behaviours import hold_out_point
 from assistbot.human.controller import HumanController
+from assistbot.human.population import Partner
 from assistbot.human.script import parse_human
+from assistbot.robot import primitives as P
+from assistbot.robot.controller import RobotController
+from assistbot.robot.sim import body_lift, body_xy, run
 from assistbot.world import Arrangement, build_world
 from assistbot.world.world import HUMAN_GRIP_YIELD_FORCE, World
 
@@ -62,3 +69,43 @@ def test_a_tremor_that_went_on_against_the_table_would_tear_the_grip_open(monkey
     w, hc, peak = _grasp_on_the_table_and_hold(6.0)
     assert w.grip_yields and w.grip_yields[0][1] == "bottle", (w.grip_yields, peak)
     assert w.human_holding() is None
+
+
+def _robot_takes_the_glass_from_a_trembling_hand():
+    w = build_world(Arrangement.from_options("RWS:closed@0.20,0.20", "HWS:empty"), seed=0)
+    robot = RobotController(w.model, w.data)
+    partner = Partner(tremor_amplitude=AMPLITUDE, tremor_frequency=6.0)
+    human = HumanController(w, config=parse_human({"profile": "passive", "partner": partner.to_dict()}))
+    human.start("hand_to_robot", object="glass", grip="ag")
+
+    def held_out():
+        hand = w.site_pos("human_r_grasp")
+        return w.human_holding() == "glass" and np.linalg.norm(hand - hold_out_point(human)) < 0.04 and human.arm.arrived(w.time, 0.04)
+    while not held_out() and w.time < 15.0:
+        human.tick(w.time)
+        w.step(10)
+    prim = P.Receive(robot, "glass", human_holds=lambda: w.human_holding() is not None, lifted=body_lift(w, "glass"),
+                     locate=lambda name: body_xy(w, name)())
+    pr, _ = run(w, prim, body_xy(w, "glass"), seconds=45.0, each_tick=human.tick)
+    return w, human, pr
+
+
+def test_a_trembling_hand_lets_go_of_what_the_robot_has_taken_hold_of():
+    w, human, pr = _robot_takes_the_glass_from_a_trembling_hand()
+    assert pr.status is P.Status.SUCCEEDED, pr.reason
+    assert [(b.name, b.status.value) for b in human.done] == [("hand_to_robot", "succeeded")], human.done
+    assert not w.grip_yields          # she let go; the glass was not torn from her fingers
+    st = w.state()
+    assert st.objects["glass"].zone == "RWS" and st.objects["glass"].upright and st.human_holds is None, st.summary()
+
+
+@pytest.mark.slow
+def test_a_tremor_that_went_on_in_the_robots_grip_would_tear_the_glass_from_her_fingers(monkeypatch):
+    build = World.__init__
+
+    def table_only(self, *a, **k):
+        build(self, *a, **k)
+        self.geom_stiff = self.geom_table.copy()
+    monkeypatch.setattr(World, "__init__", table_only)
+    w, _, _ = _robot_takes_the_glass_from_a_trembling_hand()
+    assert w.grip_yields and w.grip_yields[0][1] == "glass", w.grip_yields

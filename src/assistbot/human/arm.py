@@ -91,7 +91,7 @@ DEFAULT_SHOULDER, DEFAULT_REACH = shoulder_and_reach(arm_model())
 SHOULDER_XY = DEFAULT_SHOULDER[:2].copy()
 #: the direction (world) in which a tremor moves the hand: mostly up and down, partly sideways
 TREMOR_DIRECTION = np.array([0.0, 0.6, 0.8])
-#: s over which the tremor fades when the hand comes to rest on something the table bears, and returns when it is lifted
+#: s over which the tremor fades when the hand comes to rest on something stiff, and returns when it is free again
 TREMOR_SUPPORT_TAU = 0.15
 #: the hand trembles freely (and its tremor is measured, `tremor.Tremor.observe`) once it makes this much of it
 TREMOR_FREE = 0.99
@@ -207,7 +207,7 @@ class HumanArm:
         self.tremor_amplitude = float(tremor_amplitude)
         self.tremor_frequency = float(tremor_frequency)
         self._tremor = Tremor(self.tremor_amplitude, self.tremor_frequency, TREMOR_DIRECTION, self.dt)
-        self._tremor_free = 1.0      # how much of the tremor the hand makes: none while the table bears what it holds
+        self._tremor_free = 1.0      # how much of the tremor the hand makes: none while it is braced (`World.hand_braced`)
         self.d = mujoco.MjData(self.m)
         wm = world.model
         self._act = np.array([wm.actuator(j).id for j in HUMAN_ARM_JOINTS])
@@ -343,10 +343,10 @@ class HumanArm:
         if not moving and self._settled and self.tremor_amplitude == 0.0:
             return  # holding still at the goal: the servo targets stand
         if self.tremor_amplitude > 0.0:
-            # a hand on something the table bears (about to close on it, or holding it there) trembles against the
-            # table, which stops it: the tremor is the muscles' oscillating force, and a position command that
-            # went on trembling would press the object into the table with a force no hand makes (and tear the
-            # grip open)
+            # a hand braced on something stiff (what it holds resting on the table or in the robot's hand, or an
+            # object standing there that it is about to close on) trembles against it, which stops it: the tremor
+            # is the muscles' oscillating force, and a position command that went on trembling would press the
+            # object into the table or the robot's fingers with a force no hand makes (and tear the grip open)
             free = 0.0 if self.world.hand_braced() else 1.0
             self._tremor_free += min(1.0, self.dt / TREMOR_SUPPORT_TAU) * (free - self._tremor_free)
         if self.tremor_amplitude > 0.0 and self._tremor_free > TREMOR_FREE:

@@ -135,6 +135,8 @@ class World:
                     self.geom_gripper[gb == i] = f
         self.geom_gripper[gb == self.body_id["robot_gripper"]] = 4
         self.geom_table = gb == m.body("table").id
+        # what a trembling hand's object rests against and stops on: the table and the robot
+        self.geom_stiff = self.geom_table | np.array([m.body(b).name.startswith("robot") for b in gb])
         self._hand_qadr = np.array([m.jnt_qposadr[m.joint(j).id] for j in _CLOSED_MIN])
         self._hand_min = np.array(list(_CLOSED_MIN.values()))
         self._liquid_geom = m.geom("glass_visual_liquid").id
@@ -372,18 +374,20 @@ class World:
             self.data.eq_active[self.eq_hold[o]] = 0
 
     def hand_braced(self) -> bool:
-        """The person's hand rests on something the table bears: what it holds touches the table, or the hand is
-        at an object that does (within GRASP_REACH of its surface, where the fingers close on it)."""
+        """The person's hand rests on something stiff: what it holds touches the table or the robot (its hand
+        closing on it, or holding it too), or the hand is at an object standing on the table (within GRASP_REACH
+        of its surface, where the fingers close on it)."""
         d = self.data
         n = d.ncon
         if n == 0:
             return False
         g1, g2 = d.contact.geom1[:n], d.contact.geom2[:n]
         o1, o2 = self.geom_object[g1], self.geom_object[g2]
-        on_table = set(o1[self.geom_table[g2] & (o1 >= 0)].tolist()) | set(o2[self.geom_table[g1] & (o2 >= 0)].tolist())
         held = self.human_holding()
         if held is not None:
-            return OBJECTS.index(held) in on_table
+            k = OBJECTS.index(held)
+            return bool(((o1 == k) & self.geom_stiff[g2]).any() or ((o2 == k) & self.geom_stiff[g1]).any())
+        on_table = set(o1[self.geom_table[g2] & (o1 >= 0)].tolist()) | set(o2[self.geom_table[g1] & (o2 >= 0)].tolist())
         return any(OBJECTS[k] in catalogue.TASK_OBJECTS and self.grasp_distance(OBJECTS[k]) < GRASP_REACH for k in on_table)
 
     def human_holding(self) -> str | None:
