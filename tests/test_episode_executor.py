@@ -6,7 +6,7 @@ from __future__ import annotations
 import pytest
 
 from assistbot.cognition.percept import HandPercept, ObjectPercept, Percept
-from assistbot.episode.executor import RobotExecutor
+from assistbot.episode.executor import LIFTED_MEMORY, RobotExecutor
 from assistbot.world import PAPER_ARRANGEMENTS, build_world
 
 
@@ -147,8 +147,20 @@ def test_a_lifted_object_is_grasped_at_its_own_base_not_below_the_hand_seen_abov
     executor.see(_percept(hand))
     assert executor._lifted("held_out") == pytest.approx(0.18)
     assert executor._lifted("glass") == pytest.approx(0.18)
-    # not placed (hidden by the robot's hand, say): from the hand that holds it
-    p = _percept(hand)
-    p.objects["glass"] = ObjectPercept("glass", "HWS", "full", (0.0, 0.0, 0.0), seen=False)
-    executor.see(p)
-    assert executor._lifted("held_out") == pytest.approx(0.23)
+
+
+def test_a_lifted_object_hidden_by_the_robots_hand_keeps_the_base_last_seen_then_the_hands(executor):
+    seen = _percept(HandPercept("grasp_ag", (-0.1, -0.03, 0.33), object_in_hand="glass", held_out=True))
+    seen.t = 20.0
+    executor.see(seen)
+    # the robot's hand comes in front of the glass: only her hand is seen, 5 cm lower than it holds the glass
+    for t in (20.5, 22.0, 20.0 + LIFTED_MEMORY):
+        hidden = _percept(HandPercept("grasp_ag", (-0.1, -0.03, 0.18 + 0.1 - 0.05), object_in_hand="glass", held_out=True))
+        hidden.objects["glass"] = ObjectPercept("glass", "HWS", "full", (0.0, 0.0, 0.0), seen=False)
+        hidden.t = t
+        executor.see(hidden)
+        assert executor._lifted("held_out") == pytest.approx(0.18), t
+    # long unseen: from the hand that holds it
+    hidden.t = 20.0 + LIFTED_MEMORY + 0.5
+    executor.see(hidden)
+    assert executor._lifted("held_out") == pytest.approx(0.13)

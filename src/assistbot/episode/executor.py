@@ -45,6 +45,9 @@ USING = ("pour", "drink")
 REACHING = ("reach", "grasp_ag", "grasp_sg")
 #: s after the hand was last seen pouring or drinking in which it offers nothing: it first puts down what it used
 AFTER_USE = 3.0
+#: s for which the base of an object held up, last placed by its own silhouette, stands for it while the robot's
+#: approaching hand hides it (the hand holding it, seen instead, puts it several cm off)
+LIFTED_MEMORY = 5.0
 
 
 def lost_frame(percept: Percept) -> bool:
@@ -68,6 +71,7 @@ class RobotExecutor:
         self._percept: Percept | None = None
         self._last_seen: dict[str, tuple[float, float]] = {}
         self._standing: dict[str, tuple[float, float]] = {}   # objects last seen standing on the table
+        self._lifted_seen: dict[str, tuple[float, float]] = {}  # object held up -> (t, its base's height) last placed
         self._open_hand: tuple[float, tuple[float, float, float]] | None = None  # (t, where) the open hand was seen held out
         self._held_out_seen = False  # the object the person holds out has been seen during this action
         self._aim: str | None = None  # what the action's target is perceived as: an object, or "held_out"
@@ -134,13 +138,13 @@ class RobotExecutor:
         return p.hand.object_in_hand == obj
 
     def _lifted(self, obj: str | None) -> float | None:
-        """Height (m above the table) of the base of ``obj`` held up by the person, as seen now: the object's own
-        triangulated base, else from the hand that holds it (at the object's top for a grip from above, at its
-        middle for one from the side); None when neither is seen. The object's own base is the one to trust
-        (vision_accuracy: lifted objects' bases within 1.1 cm in nine of ten frames, unseen people too); the hand's
-        end lies up to 5 cm above where a person's own hand holds it, and a glass grasped that high has a finger over
-        its rim, which then hooks it as the hand backs off (partner 1081). A grasp a little low is set down by feel
-        (`LowerUntilSupported`)."""
+        """Height (m above the table) of the base of ``obj`` held up by the person: the object's own triangulated
+        base as seen now, else as last seen within LIFTED_MEMORY s (the robot's approaching hand hides it), else
+        from the hand that holds it (at the object's top for a grip from above, at its middle for one from the
+        side); None when none is seen. The object's own base is the one to trust (vision_accuracy: lifted objects'
+        bases within 1.1 cm in nine of ten frames, unseen people too); the hand's end lies up to 5 cm above or
+        below where a person's own hand holds it: a glass grasped that high has a finger over its rim, which hooks
+        it as the hand backs off (partner 1081), one grasped that low a finger under its base (1070)."""
         p = self._percept
         if p is None or obj is None:
             return None
@@ -149,6 +153,9 @@ class RobotExecutor:
         o = p.objects.get(name) if name else None
         if o is not None and o.seen and o.position[2] > STANDING_Z:
             return float(o.position[2])
+        last = self._lifted_seen.get(name) if name else None
+        if last is not None and p.t - last[0] <= LIFTED_MEMORY:
+            return last[1]
         if h.seen and name is not None and h.object_in_hand == name:
             height = catalogue.height(name)
             return float(h.position[2]) - (height if h.posture == "grasp_ag" else height / 2)
@@ -309,6 +316,10 @@ class RobotExecutor:
                 self._states[name] = (o.state, first, percept.t)
             if o.seen:
                 self._last_seen[name] = (o.position[0], o.position[1])
+                if o.position[2] > STANDING_Z and name != percept.robot.holding:
+                    self._lifted_seen[name] = (percept.t, float(o.position[2]))
+                else:
+                    self._lifted_seen.pop(name, None)
                 if o.position[2] < STANDING_Z and name != percept.robot.holding:
                     self._standing[name] = (o.position[0], o.position[1])
                 else:

@@ -191,7 +191,9 @@ class HumanArm:
     speed: mean hand speed (m/s) of a reach; a reach of distance d lasts
     max(MIN_DURATION, d / speed, rotation / ANGULAR_SPEED) seconds. The arm is the world's person's
     (``world.human_body``). A tremor (amplitude m, frequency Hz) moves the hand along TREMOR_DIRECTION all
-    the time, at rest too, by that amplitude as the measured hand makes it (`tremor.Tremor`).
+    the time, at rest too, by that amplitude as the measured hand makes it (`tremor.Tremor`), but while the
+    hand is braced on something stiff (`World.hand_braced`: what it holds rests on the table or in the robot's
+    hand), where it stops.
     """
 
     def __init__(self, world, speed: float = 0.2, dt: float = CONTROL_DT, tremor_amplitude: float = 0.0,
