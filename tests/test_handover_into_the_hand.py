@@ -6,9 +6,7 @@ physics, perception a stand-in that keeps the first sight."""
 
 from __future__ import annotations
 
-import numpy as np
-
-from assistbot.human.behaviours import hold_out_point
+from _handover import hold_out_until_there
 from assistbot.human.controller import HumanController
 from assistbot.human.population import Body, Partner
 from assistbot.human.script import parse_human
@@ -30,12 +28,7 @@ def _receive_what_is_brought(monkeypatch, feel: bool):
     robot = RobotController(w.model, w.data)
     human = HumanController(w, config=parse_human({"profile": "passive", "partner": FAR.to_dict()}))
     human.start("hand_to_robot", object="glass", grip="ag")
-    def held_out():
-        hand = w.site_pos("human_r_grasp")
-        return w.human_holding() == "glass" and np.linalg.norm(hand - hold_out_point(human)) < 0.03 and human.arm.arrived(w.time, 0.03)
-    while not held_out() and w.time < 15.0:
-        human.tick(w.time)
-        w.step(10)
+    hold_out_until_there(w, human, "glass", 0.03)
     seen_xy, seen_lift = body_xy(w, "glass")(), body_lift(w, "glass")()   # the last sight of it
     prim = P.Receive(robot, "glass", human_holds=lambda: w.human_holding() is not None, lifted=lambda: seen_lift,
                      locate=lambda name: body_xy(w, name)())

@@ -5,10 +5,9 @@ the robot's fingers, with a force no hand makes and tear its own grip open. In t
 
 from __future__ import annotations
 
-import numpy as np
 import pytest
 
-from assistbot.human.behaviours import hold_out_point
+from _handover import hold_out_until_there
 from assistbot.human.controller import HumanController
 from assistbot.human.population import Partner
 from assistbot.human.script import parse_human
@@ -77,13 +76,7 @@ def _robot_takes_the_glass_from_a_trembling_hand():
     partner = Partner(tremor_amplitude=AMPLITUDE, tremor_frequency=6.0)
     human = HumanController(w, config=parse_human({"profile": "passive", "partner": partner.to_dict()}))
     human.start("hand_to_robot", object="glass", grip="ag")
-
-    def held_out():
-        hand = w.site_pos("human_r_grasp")
-        return w.human_holding() == "glass" and np.linalg.norm(hand - hold_out_point(human)) < 0.04 and human.arm.arrived(w.time, 0.04)
-    while not held_out() and w.time < 15.0:
-        human.tick(w.time)
-        w.step(10)
+    hold_out_until_there(w, human, "glass", 0.04)
     prim = P.Receive(robot, "glass", human_holds=lambda: w.human_holding() is not None, lifted=body_lift(w, "glass"),
                      locate=lambda name: body_xy(w, name)())
     pr, _ = run(w, prim, body_xy(w, "glass"), seconds=45.0, each_tick=human.tick)
