@@ -45,8 +45,8 @@ USING = ("pour", "drink")
 REACHING = ("reach", "grasp_ag", "grasp_sg")
 #: s after the hand was last seen pouring or drinking in which it offers nothing: it first puts down what it used
 AFTER_USE = 3.0
-#: s for which the base of an object held up, last placed by its own silhouette, stands for it while the robot's
-#: approaching hand hides it (the hand holding it, seen instead, puts it several cm off)
+#: s for which the base of an object held up, as last seen with the object placed, stands for it while the robot's
+#: approaching hand hides it (the hand holding it, seen alone, puts it several cm off)
 LIFTED_MEMORY = 5.0
 
 
@@ -137,29 +137,39 @@ class RobotExecutor:
             return p.hand.object_in_hand is not None
         return p.hand.object_in_hand == obj
 
+    @staticmethod
+    def _lift_seen(p: Percept, name: str | None) -> tuple[float | None, float | None]:
+        """The base height of ``name`` held up, as this frame shows it: (the higher of its own triangulated base and
+        the hand's, when the object itself is placed; the hand's alone)."""
+        h = p.hand
+        o = p.objects.get(name) if name else None
+        by_hand = None
+        if h.seen and name is not None and h.object_in_hand == name:
+            height = catalogue.height(name)
+            by_hand = float(h.position[2]) - (height if h.posture == "grasp_ag" else height / 2)
+        if o is not None and o.seen and o.position[2] > STANDING_Z:
+            return (float(o.position[2]) if by_hand is None else max(float(o.position[2]), by_hand)), by_hand
+        return None, by_hand
+
     def _lifted(self, obj: str | None) -> float | None:
-        """Height (m above the table) of the base of ``obj`` held up by the person: the object's own triangulated
-        base as seen now, else as last seen within LIFTED_MEMORY s (the robot's approaching hand hides it), else
-        from the hand that holds it (at the object's top for a grip from above, at its middle for one from the
-        side); None when none is seen. The object's own base is the one to trust (vision_accuracy: lifted objects'
-        bases within 1.1 cm in nine of ten frames, unseen people too); the hand's end lies up to 5 cm above or
-        below where a person's own hand holds it: a glass grasped that high has a finger over its rim, which hooks
-        it as the hand backs off (partner 1081), one grasped that low a finger under its base (1070)."""
+        """Height (m above the table) of the base of ``obj`` held up by the person, as seen now: the higher of the
+        object's own triangulated base and the one from the hand that holds it (at the object's top for a grip
+        from above, at its middle for one from the side); while the object itself is not placed (the robot's
+        approaching hand hides it), that height as last seen with it, for LIFTED_MEMORY s; then the hand's alone;
+        None when none is seen. The higher of the two: a hand over the top hides part of the object and vision
+        then places it low, and a grasp too low cannot set the object down again (a finger closes under its base).
+        The hand's alone, read at times 5 cm low, put such a finger under the glass of partner 1070."""
         p = self._percept
         if p is None or obj is None:
             return None
-        h = p.hand
-        name = h.object_in_hand if obj == "held_out" else obj
-        o = p.objects.get(name) if name else None
-        if o is not None and o.seen and o.position[2] > STANDING_Z:
-            return float(o.position[2])
+        name = p.hand.object_in_hand if obj == "held_out" else obj
+        seen, by_hand = self._lift_seen(p, name)
+        if seen is not None:
+            return seen
         last = self._lifted_seen.get(name) if name else None
         if last is not None and p.t - last[0] <= LIFTED_MEMORY:
             return last[1]
-        if h.seen and name is not None and h.object_in_hand == name:
-            height = catalogue.height(name)
-            return float(h.position[2]) - (height if h.posture == "grasp_ag" else height / 2)
-        return None
+        return by_hand
 
     def _offered(self) -> bool:
         """The person still holds something out to the robot, as the frames of the last OFFER_WINDOW that
@@ -316,8 +326,9 @@ class RobotExecutor:
                 self._states[name] = (o.state, first, percept.t)
             if o.seen:
                 self._last_seen[name] = (o.position[0], o.position[1])
-                if o.position[2] > STANDING_Z and name != percept.robot.holding:
-                    self._lifted_seen[name] = (percept.t, float(o.position[2]))
+                lift = self._lift_seen(percept, name)[0]
+                if lift is not None and name != percept.robot.holding:
+                    self._lifted_seen[name] = (percept.t, lift)
                 else:
                     self._lifted_seen.pop(name, None)
                 if o.position[2] < STANDING_Z and name != percept.robot.holding:
