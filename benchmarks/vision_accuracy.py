@@ -48,19 +48,14 @@ def _side_by_side(default, unseen, label: str) -> str:
     from assistbot.vision.evaluate import wilson
     from assistbot.vision.library import KINDS
 
+    def rate(k: int, n: int) -> str:
+        """k of n as a percentage with its 95% Wilson interval and n."""
+        lo, hi = wilson(k, n)
+        return f"{k / n * 100:5.1f}% [{lo * 100:4.1f},{hi * 100:5.1f}] {n:4d}" if n else f"{'-':>22}"
+
     def cell(score, kind, cls=None) -> str:
-        if cls is None:
-            n = len(score.truth[kind])
-            if not n:
-                return f"{'-':>22}"
-            lo, hi = score.interval(kind)
-            return f"{score.accuracy(kind) * 100:5.1f}% [{lo * 100:4.1f},{hi * 100:5.1f}] {n:4d}"
-        pairs = [(t, p) for t, p in zip(score.truth[kind], score.pred[kind]) if t == cls]
-        if not pairs:
-            return f"{'-':>22}"
-        k = sum(t == p for t, p in pairs)
-        lo, hi = wilson(k, len(pairs))
-        return f"{k / len(pairs) * 100:5.1f}% [{lo * 100:4.1f},{hi * 100:5.1f}] {len(pairs):4d}"
+        pairs = [(t, p) for t, p in zip(score.truth[kind], score.pred[kind]) if cls is None or t == cls]
+        return rate(sum(t == p for t, p in pairs), len(pairs))
 
     w = 22
     lines = [f"\n{'':<26} {'default person':>{w}}   {label:>{w}}",
@@ -71,10 +66,6 @@ def _side_by_side(default, unseen, label: str) -> str:
             lines.append(f"  {c:<24} {cell(default, kind, c)}   {cell(unseen, kind, c)}")
     objs = ("bottle", "glass")
     lines.append(f"{'object state (both)':<26} {default.accuracy(objs) * 100:5.1f}%{'':>16}   {unseen.accuracy(objs) * 100:5.1f}%")
-    def rate(k: int, n: int) -> str:
-        lo, hi = wilson(k, n)
-        return f"{k / n * 100:5.1f}% [{lo * 100:4.1f},{hi * 100:5.1f}] {n:4d}" if n else f"{'-':>22}"
-
     held = (default.held_out_recall(), unseen.held_out_recall())
     lines.append(f"{'held out, reported so':<26} {rate(held[0][0], held[0][1])}   {rate(held[1][0], held[1][1])}")
     lines.append(f"{'not held out, reported so':<26} {rate(held[0][2], held[0][3])}   {rate(held[1][2], held[1][3])}")

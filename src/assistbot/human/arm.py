@@ -351,12 +351,12 @@ class HumanArm:
             # object into the table or the robot's fingers with a force no hand makes (and tear the grip open)
             free = 0.0 if self.world.hand_braced() else 1.0
             self._tremor_free += min(1.0, self.dt / TREMOR_SUPPORT_TAU) * (free - self._tremor_free)
-        if self.tremor_amplitude > 0.0 and self._tremor_free > TREMOR_FREE:
-            # the tremor is measured while the hand rests on nothing (the table under what it holds stops it), with
-            # what it holds too: the load lowers the arm's resonance toward the tremor band, and unregulated the
-            # held object swayed twice the drawn amplitude. Its deviation from the planned path is the tremor and slow
-            # lags, which the lock-in ignores
-            self._tremor.observe(t, self.hand_pose()[0] - self._planned(t)[0])
+            if self._tremor_free > TREMOR_FREE:
+                # the tremor is measured while the hand rests on nothing (the table under what it holds stops it),
+                # with what it holds too: the load lowers the arm's resonance toward the tremor band, and
+                # unregulated the held object swayed twice the drawn amplitude. Its deviation from the planned path
+                # is the tremor and slow lags, which the lock-in ignores
+                self._tremor.observe(t, self.hand_pose()[0] - self._planned(t)[0])
         q, biggest = self._follow(t, iterations)
         self.q = q
         self._settled = not moving and biggest < SETTLED_STEP
