@@ -26,6 +26,12 @@ from assistbot.task import HAND_POSTURES
 PROTOTYPES = 2
 #: what is classified, and its classes: each task object's states, the hand's postures
 KINDS = {**catalogue.STATES, "hand": HAND_POSTURES}
+#: whether the hand seen is held out toward the robot, learnt from the hand's features like its posture:
+#: where and how a person holds things out differs with the body and the habit (short arms, a seat
+#: farther back hold out short of the hand-over zone), which one place on the table cannot tell
+HELD_OUT = "held_out"
+#: every classifier the library holds, and its classes
+CLASSES = {**KINDS, HELD_OUT: ("kept", "held_out")}
 K_NEIGHBOURS = 5
 
 
@@ -143,7 +149,7 @@ class Classifier:
 
 def build_classifier(kind: str, crops: list[np.ndarray | None], extras: list[np.ndarray], labels: list[str], seed: int = 0,
                      weights: np.ndarray | None = None) -> Classifier:
-    classes = KINDS[kind]
+    classes = CLASSES[kind]
     y = np.array([classes.index(lab) for lab in labels])
     protos = []
     for c in range(len(classes)):
@@ -170,7 +176,7 @@ def build_classifier(kind: str, crops: list[np.ndarray | None], extras: list[np.
     return Classifier(kind, classes, protos_f, Z, y, mean, std, w, mlp)
 
 
-MLP_KINDS = ("hand",)
+MLP_KINDS = ("hand", HELD_OUT)
 MLP_HIDDEN, MLP_EPOCHS, MLP_RATE, MLP_DECAY = 64, 3000, 0.5, 3e-3
 MLP_MEMBERS = 3             # networks from different seeds, averaged: a steadier fit than one
 

@@ -37,6 +37,7 @@ IN_HAND_END_XY = IN_HAND_XY + 0.05      # ... measured from the hand's end, whic
 HIDDEN_FINGERS = 0.10       # m of a hand that the robot's arm can hide beyond the end seen (the fingers)
 AT_TOP = 0.02               # m: a hand's end this far below an object's top, or higher, holds it from above
 HOLDING = ("grasp_ag", "grasp_sg", "pour", "drink", "remove_stopper")   # postures of a hand with something in it
+OFFERING = ("grasp_ag", "grasp_sg", "open_palm_request")   # postures of a hand that may be held out to the robot
 #: the postures that use one object, and that object
 USES = {"remove_stopper": "bottle", "pour": "bottle", "drink": "glass"}
 STOPPER_SEEN = 0.04         # red touching the bottle, as a share of a stopper's expected area: closed
@@ -165,6 +166,16 @@ class Vision:
         state, conf, _ = self.classifiers[name].classify(d.crop, d.feat)
         return state, min(conf, LOW_CONFIDENCE), one
 
+    def _looks_held_out(self, h) -> bool:
+        """The library's held-out classifier (if the library has one) reads the hand as held out toward
+        the robot: a person who holds out short of the hand-over zone (short arms, a seat farther back,
+        a habit of holding things near) still holds out, and the arm and hand show it."""
+        clf = self.classifiers.get(library.HELD_OUT)
+        if clf is None:
+            return False
+        pr = clf.probabilities(h.crop, h.geo)[0]
+        return bool(pr[clf.classes.index("held_out")] > 0.5)
+
     def _hand(self, det: Detections, p: Percept) -> HandPercept:
         h = det.hand
         glass = det.objects["glass"]
@@ -231,7 +242,8 @@ class Vision:
         held = p.objects.get(hp.object_in_hand) if hp.object_in_hand else None
         if held is not None and held.seen:   # what it holds, placed by its own silhouette: the glass held from
             reach_x = max(reach_x, held.position[0])   # above hides the fingers, and the end seen is the wrist
-        hp.held_out = bool(reach_x > HANDOVER_ZONE_X[0] and X[2] > HELD_OUT_Z and posture in ("grasp_ag", "grasp_sg", "open_palm_request"))
+        in_zone = reach_x > HANDOVER_ZONE_X[0] and X[2] > HELD_OUT_Z
+        hp.held_out = bool(posture in OFFERING and (in_zone or self._looks_held_out(h)))
         if hp.object_in_hand and hp.held_out and not p.objects[hp.object_in_hand].seen:
             # held out but not placed (lifted objects are hard to place): in the hand's zone; one that is
             # seen keeps its own, which the hand's end (fingers around it, past the middle line) is not
@@ -334,13 +346,13 @@ def build_library(seed: int = 0, n_scenes: int = LIBRARY_SCENES, root=None, prog
 
 #: feature weights (after the template scores) per kind: the stopper and liquid features decide the states
 WEIGHTS = {"bottle": [3, 1, 1, 0.5, 0.5], "glass": [3, 1, 2, 0.5, 0.5],
-           "hand": None}
+           "hand": None, library.HELD_OUT: None}
 
 
 def fit_library(cal: dict, frames, seed: int = 0) -> tuple[dict, dict]:
     """Classifiers (and the calibration with the hand offsets) from labelled (StereoFrame, Labels) pairs."""
     det = Detector(cal)
-    data = {k: ([], [], []) for k in library.KINDS}
+    data = {k: ([], [], []) for k in library.CLASSES}
     offsets: dict[str, list[np.ndarray]] = {}
     for f, lab in frames:
         d = det(f.left, f.right, f.cams, f.body)
@@ -354,6 +366,9 @@ def fit_library(cal: dict, frames, seed: int = 0) -> tuple[dict, dict]:
             data["hand"][0].append(d.hand.crop)
             data["hand"][1].append(d.hand.geo)
             data["hand"][2].append(lab.posture)
+            data[library.HELD_OUT][0].append(d.hand.crop)
+            data[library.HELD_OUT][1].append(d.hand.geo)
+            data[library.HELD_OUT][2].append(library.CLASSES[library.HELD_OUT][int(lab.held_out)])
             offsets.setdefault(lab.posture, []).append(np.array(lab.hand_position) - d.hand.position)
     clfs = {k: library.build_classifier(k, *v, seed=seed, weights=WEIGHTS[k]) for k, v in data.items()}
     cal = dict(cal)
