@@ -242,8 +242,10 @@ class Vision:
         held = p.objects.get(hp.object_in_hand) if hp.object_in_hand else None
         if held is not None and held.seen:   # what it holds, placed by its own silhouette: the glass held from
             reach_x = max(reach_x, held.position[0])   # above hides the fingers, and the end seen is the wrist
-        in_zone = reach_x > HANDOVER_ZONE_X[0] and X[2] > HELD_OUT_Z
-        hp.held_out = bool(posture in OFFERING and (in_zone or self._looks_held_out(h)))
+        # raised toward the robot, and either in the zone or held as people hold things out (a hand resting
+        # on the table, read as an open palm, is neither)
+        raised = posture in OFFERING and X[2] > HELD_OUT_Z
+        hp.held_out = bool(raised and (reach_x > HANDOVER_ZONE_X[0] or self._looks_held_out(h)))
         if hp.object_in_hand and hp.held_out and not p.objects[hp.object_in_hand].seen:
             # held out but not placed (lifted objects are hard to place): in the hand's zone; one that is
             # seen keeps its own, which the hand's end (fingers around it, past the middle line) is not
