@@ -1,12 +1,13 @@
 """The template library: class prototypes (small PNGs) and labelled feature examples (index.json).
 
 Built by `assistbot templates` from scenes of the "library" seed stream (never scored).  For
-each classified thing — the bottle's state, the glass's state, the hand's posture — the
-library keeps, per class, up to `PROTOTYPES` prototype templates (means of k-means clusters
-of the examples' crops) and the examples' feature vectors.  Classification of a new crop:
-`cv2.matchTemplate` (normalised correlation coefficient) of the crop against every prototype
-at three scales gives one score per class; those scores and the shape features form the
-feature vector, classified by its nearest labelled examples (k-NN, standardised features).
+each classified thing (the bottle's state, the glass's state, the hand's posture, whether the
+hand is held out to the robot) the library keeps, per class, up to `PROTOTYPES` prototype
+templates (means of k-means clusters of the examples' crops) and the examples' feature vectors.
+Classification of a new crop: `cv2.matchTemplate` (normalised correlation coefficient) of the
+crop against every prototype gives one score per class; those scores and the shape features
+form the feature vector, classified by its nearest labelled examples (k-NN, standardised
+features), or for the hand (`MLP_KINDS`) by a small network trained on them.
 """
 
 from __future__ import annotations

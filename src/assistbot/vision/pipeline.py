@@ -173,8 +173,7 @@ class Vision:
         clf = self.classifiers.get(library.HELD_OUT)
         if clf is None:
             return False
-        pr = clf.probabilities(h.crop, h.geo)[0]
-        return bool(pr[clf.classes.index("held_out")] > 0.5)
+        return clf.classify(h.crop, h.geo)[0] == "held_out"
 
     def _hand(self, det: Detections, p: Percept) -> HandPercept:
         h = det.hand
