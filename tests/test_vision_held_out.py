@@ -10,11 +10,11 @@ from __future__ import annotations
 import pytest
 
 from assistbot.vision import StereoCapture, Vision, library
+from assistbot.vision.pipeline import OFFERING
 from assistbot.vision.scenes import POSE_TOLERANCE, SceneSampler, by_person, pose
 from assistbot.world.layout import HANDOVER_ZONE_X
 
 UNSEEN = range(1000, 1100)
-OFFERING = ("open_palm_request", "grasp_ag", "grasp_sg")
 
 pytestmark = pytest.mark.slow     # about 90 people built in the physics
 

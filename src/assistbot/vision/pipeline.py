@@ -353,7 +353,8 @@ WEIGHTS = {"bottle": [3, 1, 1, 0.5, 0.5], "glass": [3, 1, 2, 0.5, 0.5],
 def fit_library(cal: dict, frames, seed: int = 0) -> tuple[dict, dict]:
     """Classifiers (and the calibration with the hand offsets) from labelled (StereoFrame, Labels) pairs."""
     det = Detector(cal)
-    data = {k: ([], [], []) for k in library.CLASSES}
+    data = {k: ([], [], []) for k in library.KINDS}
+    held_out: list[str] = []
     offsets: dict[str, list[np.ndarray]] = {}
     for f, lab in frames:
         d = det(f.left, f.right, f.cams, f.body)
@@ -367,10 +368,9 @@ def fit_library(cal: dict, frames, seed: int = 0) -> tuple[dict, dict]:
             data["hand"][0].append(d.hand.crop)
             data["hand"][1].append(d.hand.geo)
             data["hand"][2].append(lab.posture)
-            data[library.HELD_OUT][0].append(d.hand.crop)
-            data[library.HELD_OUT][1].append(d.hand.geo)
-            data[library.HELD_OUT][2].append(library.CLASSES[library.HELD_OUT][int(lab.held_out)])
+            held_out.append(library.CLASSES[library.HELD_OUT][int(lab.held_out)])
             offsets.setdefault(lab.posture, []).append(np.array(lab.hand_position) - d.hand.position)
+    data[library.HELD_OUT] = (data["hand"][0], data["hand"][1], held_out)    # the hand's examples, labelled held out or not
     clfs = {k: library.build_classifier(k, *v, seed=seed, weights=WEIGHTS[k]) for k, v in data.items()}
     cal = dict(cal)
     # the grasp site relative to the seen distal end of the hand, per posture (median, m)
