@@ -48,6 +48,7 @@ class LowerUntilSupported(Phase):
         self.felt = self.felt + 1 if np.linalg.norm(self.force - self.f0) > self.SUPPORT_N else 0
         if self.felt >= self.FELT_TICKS:
             prim.robot.hold()
+            prim.supported = True
             return Status.SUCCEEDED, ""
         z = float(prim.robot.tcp_pose().translation()[2])
         if z < self.best_z - self.PROGRESS_M:
@@ -55,7 +56,10 @@ class LowerUntilSupported(Phase):
         if self.loosened is not None:
             # the grip eased: the object slides down between the fingers onto the table
             prim.robot.hold()
-            return (Status.SUCCEEDED, "") if t - self.loosened >= self.SLIDE_SECONDS else (Status.RUNNING, "")
+            if t - self.loosened < self.SLIDE_SECONDS:
+                return Status.RUNNING, ""
+            prim.supported = True
+            return Status.SUCCEEDED, ""
         if t - self.since > self.STALL_SECONDS or t >= self.timeout:
             # as low as the hand goes and not yet on the table (grasped lower than assumed): ease the grip
             # rather than drop it from there

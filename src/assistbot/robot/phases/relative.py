@@ -6,6 +6,8 @@ import numpy as np
 
 from assistbot.robot import poses
 from assistbot.robot.phases.move import Move
+from assistbot.robot.primitives.geometry import WALL_TOP
+from assistbot.world.layout import TABLE_Z
 
 
 class Rise(Move):
@@ -49,3 +51,23 @@ class BackOff(Relative):
         ax[2] = 0.0
         ax /= max(np.linalg.norm(ax), 1e-9)
         self._goal = poses.pose(self.origin.rotation(), self.origin.translation() - self.distance * ax + [0, 0, self.up])
+
+
+class RiseClear(Rise):
+    """After letting go of an object set down on the table, when the hand held it so high that its upper
+    finger stood above the object's wall (`WALL_TOP`: the glass's rim), rise straight up until the hand's
+    lowest edge clears that top, before backing off: the open finger then hangs over the mouth, and a level
+    back-off hooks the rim from inside and drags the object over. How high it held the object is felt: the
+    table carries the object (`LowerUntilSupported`), so the hand stands at its grasp height above the
+    table. Held lower, the hand backs off level (`BackOff`) at once."""
+
+    def __init__(self, name: str = "rise clear of the top", duration: float = 1.5) -> None:
+        super().__init__(name, 0.0, duration=duration)
+
+    def start(self, prim):
+        obj = prim.let_go_of
+        g = prim.robot.gripper
+        z = float(prim.robot.tcp_pose().translation()[2])
+        self.idle = obj not in WALL_TOP or z + g.reach_above <= TABLE_Z + WALL_TOP[obj]
+        self.z = TABLE_Z + WALL_TOP.get(obj, 0.0) + g.reach_below
+        super().start(prim)

@@ -158,6 +158,7 @@ class Primitive:
         self._held_xy = None
         self.carrying = False
         self._let_go_of: str | None = None
+        self.supported = False      # the table carries what the hand holds (`LowerUntilSupported`)
         self.set_down = None
         self._phases = self.phases()
         self._t, self._t_total = 0.0, 0.0
@@ -237,12 +238,20 @@ class Primitive:
                 self._held_xy = self.xy().copy()
                 self._lift_frozen = True
 
+    @property
+    def let_go_of(self) -> str | None:
+        """The object this action has let go of standing on the table, if any (`note_set_down`)."""
+        return self._let_go_of
+
     def note_set_down(self) -> None:
         """Letting go of an object set down on the table: where it stands, as the robot's own body knows it
-        (the axis of a side grasp lies beyond the TCP along the approach), for when its arm hides it."""
+        (the axis of a side grasp lies beyond the TCP along the approach), for when its arm hides it. On the
+        table when the hand felt the table carry it, or is as low as a grasp of it standing there."""
         pose = self.robot.tcp_pose()
         obj = self.object
-        if obj not in RADIUS or obj == "held_out" or pose.translation()[2] > TABLE_Z + GRASP_HEIGHT[obj] + IN_THE_AIR_ABOVE:
+        on_table, self.supported = self.supported, False
+        if obj not in RADIUS or obj == "held_out" or (
+                not on_table and pose.translation()[2] > TABLE_Z + GRASP_HEIGHT[obj] + IN_THE_AIR_ABOVE):
             return      # let go of in the air: into the person's hand
         c = held_centre(pose, obj)
         self.released = (obj, (float(c[0]), float(c[1])))

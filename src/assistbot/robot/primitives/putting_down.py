@@ -6,7 +6,7 @@ from typing import TYPE_CHECKING, Callable
 
 import numpy as np
 
-from assistbot.robot.phases import BackOff, FreeIdleFingers, LowerUntilSupported, Move, Open, Phase, SetCarrying
+from assistbot.robot.phases import BackOff, FreeIdleFingers, LowerUntilSupported, Move, Open, Phase, RiseClear, SetCarrying
 from assistbot.robot.primitives.carry_over import CarryOver
 from assistbot.robot.primitives.geometry import GRASP_HEIGHT, LIFT, grasp_pose_at, half_turn
 from assistbot.robot.primitives.places import free_rws_spot
@@ -24,7 +24,7 @@ SET_DOWN_ABOVE = 0.025
 
 def put_down_at(xy_of: Callable[[Primitive], np.ndarray], lift: float = LIFT) -> list[Phase]:
     """Carry the held object (upright, the hand keeping its half turn) above a table spot, lower it onto
-    the table, let go, back off."""
+    the table, let go, back off (first up clear of its top, if held above its wall: `RiseClear`)."""
 
     def at(p, up):
         x, y = xy_of(p)
@@ -39,7 +39,7 @@ def put_down_at(xy_of: Callable[[Primitive], np.ndarray], lift: float = LIFT) ->
         Move("put down", lambda p: at(p, SET_DOWN_ABOVE), duration=1.2, tolerance=0.025, may_stop_above=True),
         LowerUntilSupported(),
         Open("release"), SetCarrying(False),
-        BackOff(),
+        RiseClear(), BackOff(),
     ]
 
 
