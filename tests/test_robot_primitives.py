@@ -498,6 +498,23 @@ def test_a_glass_held_above_its_rim_is_put_down_and_left_standing(start, spot):
     assert_safe(s)
 
 
+def test_a_grasp_that_closes_on_nothing_opens_and_withdraws_level():
+    """The object is not where the hand closes (put down or dropped meanwhile): the action fails with the
+    reason, and the hand opens and backs off before it rises, leaving what stands nearby where it stood."""
+    from assistbot.robot.phases import OPENED
+
+    w, robot = make("HWS:closed", "RWS:empty@0.20,-0.12")
+    glass = w.data.xpos[w.body_id["glass"]].copy()
+    spot = (0.22, 0.12)
+    pr, s = run(w, P.PlaceInRWS(robot, "glass", spot=(0.25, 0.0)), lambda: spot)
+    assert pr.status is Status.FAILED and "closed on nothing" in pr.reason, pr.reason
+    assert float(robot.gripper.finger_angles().max()) < OPENED
+    tcp = robot.tcp_pose().translation()
+    assert np.hypot(tcp[0] - spot[0], tcp[1] - spot[1]) > 0.15
+    assert np.linalg.norm(w.data.xpos[w.body_id["glass"]] - glass) < 0.005
+    assert_safe(s)
+
+
 # --------------------------------------------------------------------------- request, retract, failures
 @pytest.mark.parametrize("target, arrangement, from_ready", [
     ((-0.20, -0.25), ("HWS:closed", "HWS:empty@-0.20,-0.25"), False),

@@ -29,6 +29,21 @@ OFFER_PHASE = "wait for the human to take it"
 TOWARD_THE_PERSON = ("carry over", "hold out", OFFER_PHASE)
 
 
+def close_in_only_while_held_out(reach: list[Phase]) -> None:
+    """A reach for what the person holds out closes in on their hand (the "approach") only while they still
+    hold it out (`no_longer_held_out`): one who puts it down or starts to pour instead is not reached into;
+    the open hand backs off the way it came."""
+    approach = next(ph for ph in reach if ph.name == "approach")
+    approach.fallback = lambda p: [BackOff("back off from the hand", distance=0.16)]
+
+
+def no_longer_held_out(p: Primitive, phase: Phase) -> str:
+    """Why a reach closing in on what the person holds out must stop (`close_in_only_while_held_out`)."""
+    if phase.name == "approach" and not p.offered():
+        return "the person no longer holds it out"
+    return ""
+
+
 def hand_not_free(p: Primitive, phase: Phase) -> str:
     """Why a hand-over to the person must not go on: on its way to them, or held out, the cameras see
     their hand holding something else (held out to the robot, say), which cannot take it; going on

@@ -8,7 +8,12 @@ from assistbot.robot.controller import TCP_MIN_X
 from assistbot.robot.phases import Move, RememberPlace, Wait, WaitFor
 from assistbot.robot.primitives.base import Primitive
 from assistbot.robot.primitives.geometry import LIFT, side_grasp_pose
-from assistbot.robot.primitives.handing_over import hold_out, waiting_for_the_person_to_let_go
+from assistbot.robot.primitives.handing_over import (
+    close_in_only_while_held_out,
+    hold_out,
+    no_longer_held_out,
+    waiting_for_the_person_to_let_go,
+)
 from assistbot.robot.primitives.places import OFFER_BASE, OFFER_X_MARGIN, free_rws_spot
 from assistbot.robot.primitives.putting_down import put_down_at
 from assistbot.robot.primitives.reaching import reach_and_grasp_phases, reachable_on_table, retract_phases
@@ -36,6 +41,7 @@ class HoldBottleForStopper(Primitive):
         super().__init__(robot, obj, **kw)
         self.timeout = timeout
         self.home_xy: np.ndarray | None = None
+        self._from_her_hand = False     # the bottle taken from the person's hand (else from the table)
 
     def _home(self) -> np.ndarray:
         """Where a bottle taken from the human's hand goes: a free place in the RWS (chosen once)."""
@@ -43,7 +49,11 @@ class HoldBottleForStopper(Primitive):
             self.home_xy = free_rws_spot(self)
         return self.home_xy
 
+    def interrupted(self, phase) -> str:
+        return no_longer_held_out(self, phase) if self._from_her_hand else ""
+
     def phases(self):
+        self._from_her_hand = False
         hold = [
             *hold_out(self.HOLD_BASE, self.HOLD_XY),
             WaitFor("hold steady for the stopper", lambda p: p.stopper_removed(), self.timeout,
@@ -69,6 +79,10 @@ class HoldBottleForStopper(Primitive):
             reach = reach_and_grasp_phases(self, held_up=True)
             k = next(i for i, ph in enumerate(reach) if ph.name == "above pre-grasp")
             reach.insert(k, WaitFor("wait until it is held out", lambda p: p.held_out() and p.offered(), OFFER_PATIENCE, None))
+            # ... and closes in while she still holds it out: one who puts it down instead is not reached after
+            # (it is then standing on her side, for the next decision to take from the table)
+            close_in_only_while_held_out(reach)
+            self._from_her_hand = True
             return reach + [
                 Wait("hold", 1.5),
                 waiting_for_the_person_to_let_go(10.0),

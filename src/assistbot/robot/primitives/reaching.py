@@ -9,7 +9,7 @@ import numpy as np
 
 from assistbot import catalogue
 from assistbot.robot import poses
-from assistbot.robot.phases import Grip, Move, Open, Phase, Rise, Unroll, unreachable
+from assistbot.robot.phases import BackOff, Grip, Move, Open, Phase, Rise, Unroll, unreachable
 from assistbot.robot.primitives.geometry import GRASP_HEIGHT, PRE_GRASP_BACK, side_grasp_pose
 from assistbot.task import OBJECTS
 
@@ -71,6 +71,16 @@ def _reach_goals(height: float | None, held_up: bool) -> list[tuple[str, Callabl
     ]
 
 
+def grasp_phase() -> Grip:
+    """Close the hand on the object it has come to. A grasp that closes on nothing (the object was not where it
+    was seen: put down or dropped meanwhile, say) opens and backs off level before the arm withdraws: the
+    closed fingers may lie around the object's neck, and the next action's first move, straight up, would
+    lift or tip it."""
+    grasp = Grip(True, "grasp")
+    grasp.fallback = lambda p: [Open("open"), BackOff("back off from the failed grasp"), *retract_phases()]
+    return grasp
+
+
 def reach_and_grasp_phases(prim: Primitive, height: float | None = None, held_up: bool = False) -> list[Phase]:
     """Reach and grasp the target from the side: standing on the table, or ``held_up`` by the person (the
     hand then reaches out for it as far as it can, and waits for it there: `Move.reach_out`)."""
@@ -82,7 +92,7 @@ def reach_and_grasp_phases(prim: Primitive, height: float | None = None, held_up
         *(Move(name, goal, duration=duration, tolerance=tolerance, reach_out=held_up,
                arrive_on_touch=held_up and name == "approach")
           for name, goal, duration, tolerance in _reach_goals(height, held_up)),
-        Grip(True, "grasp"),
+        grasp_phase(),
     ]
 
 

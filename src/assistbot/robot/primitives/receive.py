@@ -4,9 +4,9 @@ from __future__ import annotations
 
 import numpy as np
 
-from assistbot.robot.phases import BackOff, Phase, Relative, Wait, WaitFor
+from assistbot.robot.phases import Phase, Relative, Wait, WaitFor
 from assistbot.robot.primitives.base import Primitive
-from assistbot.robot.primitives.handing_over import waiting_for_the_person_to_let_go
+from assistbot.robot.primitives.handing_over import close_in_only_while_held_out, no_longer_held_out, waiting_for_the_person_to_let_go
 from assistbot.robot.primitives.places import free_rws_spot
 from assistbot.robot.primitives.putting_down import put_down_at
 from assistbot.robot.primitives.reaching import reach_and_grasp_phases, retract_phases
@@ -37,12 +37,11 @@ class Receive(Primitive):
         reach = reach_and_grasp_phases(self, held_up=True)
         # from the pre-grasp on, the hand closes in on the person's: only while they still hold it out
         # (a hand lifting the bottle to pour passes through the hand-over zone, and may pause there)
-        k, approach = next((i, ph) for i, ph in enumerate(reach) if ph.name == "approach")
+        k = next(i for i, ph in enumerate(reach) if ph.name == "approach")
         reach.insert(k, WaitFor("wait while it is held out", lambda p: p.offered(), OFFER_PATIENCE,
                                 "the person did not hold it out"))
-        # ... and while it closes in (`interrupted`): a person who starts to pour instead is not reached
-        # into; the open hand backs off the way it came
-        approach.fallback = lambda p: [BackOff("back off from the hand", distance=0.16)]
+        # ... and while it closes in (a person who starts to pour instead is not reached into)
+        close_in_only_while_held_out(reach)
         return reach + [
             Wait("hold", 1.5),  # the human feels the robot's grip before letting go
             waiting_for_the_person_to_let_go(self.timeout),
@@ -52,6 +51,4 @@ class Receive(Primitive):
         ]
 
     def interrupted(self, phase: Phase) -> str:
-        if phase.name == "approach" and not self.offered():
-            return "the person no longer holds it out"
-        return ""
+        return no_longer_held_out(self, phase)

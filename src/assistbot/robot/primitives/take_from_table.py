@@ -6,13 +6,13 @@ import mink
 import numpy as np
 
 from assistbot.robot import poses
-from assistbot.robot.phases import Grip, Move, Open, Rise, WaitFor
+from assistbot.robot.phases import Move, Open, Rise, WaitFor
 from assistbot.robot.placement import shared_spot
 from assistbot.robot.primitives.base import Primitive
 from assistbot.robot.primitives.geometry import GRASP_HEIGHT, LIFT, PRE_GRASP_BACK, grasp_pose_at, side_grasp_pose
 from assistbot.robot.primitives.places import HOLD_OUT_XY, SHARED_REACH, free_rws_spot
 from assistbot.robot.primitives.putting_down import put_down_at
-from assistbot.robot.primitives.reaching import READY_POSE_POS, TALLEST, retract_phases
+from assistbot.robot.primitives.reaching import READY_POSE_POS, TALLEST, grasp_phase, retract_phases
 from assistbot.task import OBJECTS
 from assistbot.world.layout import TABLE_Z
 
@@ -73,7 +73,7 @@ class TakeFromTable(Primitive):
             Move("back from above", lambda p: show(p, back=PRE_GRASP_BACK), duration=1.0, tolerance=0.04),
             Move("pre-grasp", lambda p: grasp_at(p, back=PRE_GRASP_BACK), duration=1.2),
             Move("approach", lambda p: grasp_at(p), duration=1.0, tolerance=0.025),
-            Grip(True, "grasp"),
+            grasp_phase(),
             Move("lift", lambda p: side_grasp_pose(p, up=LIFT), duration=1.2),
             *put_down_at(lambda p: p._home()),
             *retract_phases(),
