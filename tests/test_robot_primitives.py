@@ -469,35 +469,6 @@ def test_an_object_held_up_is_grasped_where_the_whole_hand_lies_on_its_wall(obj)
         assert h - below >= 0.0 and h + above <= top, (obj, h, top)
 
 
-@pytest.mark.parametrize("start, spot", [("0.20,-0.12", (0.25, 0.05)), ("0.15,0.10", (0.22, -0.08))])
-def test_a_glass_held_above_its_rim_is_put_down_and_left_standing(start, spot):
-    """Held so high that the upper finger lies over the rim (as a glass taken from a person's hand at a height
-    seen a few cm off may be), the glass put down stays standing where it was set: the open hand rises clear
-    of the rim before it backs off, rather than hooking it from inside and dragging it over."""
-    from assistbot.robot.phases import Move
-    from assistbot.robot.primitives.geometry import LIFT, WALL_TOP, side_grasp_pose
-
-    high = WALL_TOP["glass"] + 0.01
-
-    class PlaceHeldHigh(P.PlaceInRWS):
-        def phases(self):
-            return (P.reach_and_grasp_phases(self, height=high)
-                    + [Move("lift", lambda p: side_grasp_pose(p, up=LIFT, height=high), duration=1.2)]
-                    + P.put_down_at(lambda p: p.spot) + P.retract_phases())
-
-    w, robot = make("HWS:closed", f"RWS:empty@{start}")
-    rose = []
-    prim = PlaceHeldHigh(robot, "glass", spot=spot)
-    pr, s = run(w, prim, body_xy(w, "glass"), each_tick=lambda t: rose.append(prim.progress.phase == "rise clear of the top"))
-    assert pr.status is Status.SUCCEEDED, pr.reason
-    assert any(rose)
-    settle(w, 0.5)
-    p = w.data.xpos[w.body_id["glass"]]
-    assert upright(w, "glass") and p[2] < 0.76
-    assert np.hypot(p[0] - spot[0], p[1] - spot[1]) < 0.03
-    assert_safe(s)
-
-
 def test_a_grasp_that_closes_on_nothing_opens_and_withdraws_level():
     """The object is not where the hand closes (put down or dropped meanwhile): the action fails with the
     reason, and the hand opens and backs off before it rises, leaving what stands nearby where it stood."""

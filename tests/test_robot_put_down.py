@@ -81,6 +81,26 @@ def test_an_object_held_higher_than_assumed_meets_the_table_sooner_and_is_set_do
     assert np.hypot(p[0] - 0.22, p[1] - 0.08) < 0.03 and abs(p[2] - TABLE_Z) < 0.01
 
 
+@pytest.mark.parametrize("start, spot", [("0.20,-0.12", (0.25, 0.05)), ("0.15,0.10", (0.22, -0.08))])
+def test_a_glass_held_above_its_rim_is_left_standing_where_it_was_set_down(start, spot):
+    # taken from a person's hand at a height seen a few cm off, the glass sat so high in the hand that the upper
+    # finger lay over its rim; the level back-off then hooked the rim from inside and dragged the glass over
+    # (partners 1007 and 1081). The hand now rises clear of the rim first
+    w = build_world(Arrangement.from_options("HWS:closed", f"RWS:empty@{start}"), seed=0)
+    robot = RobotController(w.model, w.data)
+    high = P.WALL_TOP["glass"] + 0.01
+    prim = _PlaceGraspedLow(robot, "glass", P.GRASP_HEIGHT["glass"] - high, spot=spot)
+    rose = []
+    pr, s = run(w, prim, body_xy(w, "glass"), each_tick=lambda t: rose.append(prim.progress.phase == "rise clear of the top"))
+    assert pr.status is Status.SUCCEEDED, pr.reason
+    assert any(rose)
+    for _ in range(25):
+        w.step(10)
+    p = w.data.xpos[w.body_id["glass"]]
+    assert w.data.xmat[w.body_id["glass"]][8] > 0.98          # upright
+    assert np.hypot(p[0] - spot[0], p[1] - spot[1]) < 0.03 and abs(p[2] - TABLE_Z) < 0.01
+
+
 def test_what_the_hand_carries_passes_over_an_object_standing_in_the_way():
     """The glass carried across the RWS from one side of the closed bottle to the other: the straight
     way at the usual carrying height goes through the bottle; the hand rises over it and the bottle
