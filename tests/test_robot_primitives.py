@@ -477,8 +477,13 @@ def test_a_grasp_that_closes_on_nothing_opens_and_withdraws_level():
     w, robot = make("HWS:closed", "RWS:empty@0.20,-0.12")
     glass = w.data.xpos[w.body_id["glass"]].copy()
     spot = (0.22, 0.12)
-    pr, s = run(w, P.PlaceInRWS(robot, "glass", spot=(0.25, 0.0)), lambda: spot)
+    prim = P.PlaceInRWS(robot, "glass", spot=(0.25, 0.0))
+    phases = []
+    pr, s = run(w, prim, lambda: spot,
+                each_tick=lambda t: phases.append(prim.progress.phase) if phases[-1:] != [prim.progress.phase] else None)
     assert pr.status is Status.FAILED and "closed on nothing" in pr.reason, pr.reason
+    after = phases[phases.index("grasp") + 1:]
+    assert after[:3] == ["open", "back off from the failed grasp", "rise"], after
     assert float(robot.gripper.finger_angles().max()) < OPENED
     tcp = robot.tcp_pose().translation()
     assert np.hypot(tcp[0] - spot[0], tcp[1] - spot[1]) > 0.15
