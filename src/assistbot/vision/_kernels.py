@@ -516,3 +516,45 @@ def project_half(X, C, R, K):
         else:
             out[n, 0] = out[n, 1] = np.nan
     return out
+
+
+@numba.njit(cache=True, nogil=True, inline="always")
+def _grey(px):
+    """cv2.cvtColor's RGB2GRAY of one uint8 pixel: its fixed-point weights (0.299, 0.587, 0.114 in 14 bits), rounded."""
+    return float((np.int32(px[0]) * 4899 + np.int32(px[1]) * 9617 + np.int32(px[2]) * 1868 + 8192) >> 14)
+
+
+@numba.njit(cache=True, nogil=True)
+def row_correlation(ref, other, row, col, half, lo, hi):
+    """The normalised correlation (cv2.matchTemplate's TM_CCOEFF_NORMED, on the grey cv2.cvtColor's RGB2GRAY gives,
+    to float rounding) of the (2 half + 1)^2 patch of RGB image ``ref`` centred on pixel (col, row) with the
+    same-sized patches of ``other`` centred on (c, row) for c in [lo, hi]: one score per column, 0 where a patch is
+    plain. The caller keeps every patch inside both images."""
+    n = 2 * half + 1
+    m = n * n
+    p = np.empty((n, n))
+    for i in range(n):
+        for j in range(n):
+            p[i, j] = _grey(ref[row - half + i, col - half + j])
+    p -= p.mean()
+    pp = (p * p).sum()
+    w = hi + 2 * half + 1 - lo
+    g = np.empty((n, w))
+    for i in range(n):
+        for j in range(w):
+            g[i, j] = _grey(other[row - half + i, lo - half + j])
+    out = np.zeros(hi - lo + 1)
+    for k in range(hi - lo + 1):
+        s = 0.0
+        s2 = 0.0
+        sp = 0.0
+        for i in range(n):
+            for j in range(n):
+                v = g[i, k + j]
+                s += v
+                s2 += v * v
+                sp += v * p[i, j]
+        var = s2 - s * s / m
+        if var > 1e-9 and pp > 1e-9:
+            out[k] = sp / math.sqrt(var * pp)     # sum (v - mean) p = sum v p, the patch p being zero-mean
+    return out
