@@ -7,7 +7,7 @@ import cv2
 import numpy as np
 import pytest
 
-from assistbot.vision import StereoCapture, _kernels, detect
+from assistbot.vision import StereoCapture, detect
 from assistbot.vision.library import load_calibration
 from assistbot.vision.scenes import POSE_TOLERANCE, SceneSampler, by_person, pose
 
@@ -33,17 +33,6 @@ def test_the_end_is_found_again_in_the_other_view_on_its_row_to_a_fraction_of_a_
     # the right view as the reference: the left one's point is found the other way
     found, kept = detect._matched_end((left, right), [np.array([end[0] + 3.0, end[1] - 1.0]), end - [DISPARITY, 0.0]], 1)
     assert found[1] == end[1] and abs(found[0] - end[0]) < 0.2
-
-
-def test_the_row_search_scores_as_opencv_template_matching_does():
-    """`_kernels.row_correlation` stands for cv2.matchTemplate (TM_CCOEFF_NORMED) on cv2.cvtColor's grey."""
-    left, right = _pair()
-    row, col, half, lo, hi = 100, 150, detect.MATCH_HALF, 110, 142
-    grey = [cv2.cvtColor(im, cv2.COLOR_RGB2GRAY).astype(np.float32) for im in (left, right)]
-    want = cv2.matchTemplate(grey[1][row - half:row + half + 1, lo - half:hi + half + 1],
-                             grey[0][row - half:row + half + 1, col - half:col + half + 1], cv2.TM_CCOEFF_NORMED)[0]
-    got = _kernels.row_correlation(left, right, row, col, half, lo, hi)
-    assert got.shape == want.shape and np.abs(got - want).max() < 1e-3
 
 
 def test_an_end_the_other_view_does_not_show_leaves_both_ends_as_they_were():

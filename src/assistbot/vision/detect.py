@@ -227,14 +227,17 @@ def _one_point(ends: list[np.ndarray], roots: list[np.ndarray], skin: list[np.nd
     return out
 
 
+def _grey(img: np.ndarray, v0: int, v1: int, u0: int, u1: int) -> np.ndarray:
+    return cv2.cvtColor(np.ascontiguousarray(img[v0:v1, u0:u1]), cv2.COLOR_RGB2GRAY).astype(np.float32)
+
+
 def _matched_end(imgs, ends: list[np.ndarray], ref: int) -> list[np.ndarray]:
     """The hand's end in the other view found as the point the reference view's end shows, rather than as that
     view's own end. Each view's end is the mean of its outline's farthest quarter, taken on half-resolution
     labels: the two means need not fall on one point of the hand, and at the head's 12 cm baseline one pixel of
     disparity is about 5 cm of depth at the hand. The reference end's patch of image is sought along the same row
     of the other (rectified) view near the other's own end, to a fraction of a pixel (a parabola through the
-    correlation's peak; `_kernels.row_correlation`). A patch it does not find (hidden in the other view, cut by the
-    border, plain) leaves the
+    correlation's peak). A patch it does not find (hidden in the other view, cut by the border, plain) leaves the
     ends as they were: the very list, so that the caller can tell."""
     h, w = imgs[ref].shape[:2]
     u, v = float(ends[ref][0]), float(ends[ref][1])
@@ -242,11 +245,14 @@ def _matched_end(imgs, ends: list[np.ndarray], ref: int) -> list[np.ndarray]:
     H = MATCH_HALF
     if row - H < 0 or row + H + 1 > h or col - H < 0 or col + H + 1 > w:
         return ends
+    patch = _grey(imgs[ref], row - H, row + H + 1, col - H, col + H + 1)
+    if float(patch.std()) < 1.0:
+        return ends
     guess = int(float(ends[1 - ref][0]))
     lo, hi = max(H, guess - MATCH_SEARCH), min(w - H - 1, guess + MATCH_SEARCH)
     if hi - lo < 2:
         return ends
-    score = _kernels.row_correlation(imgs[ref], imgs[1 - ref], row, col, H, lo, hi)
+    score = cv2.matchTemplate(_grey(imgs[1 - ref], row - H, row + H + 1, lo - H, hi + H + 1), patch, cv2.TM_CCOEFF_NORMED)[0]
     i = int(np.argmax(score))
     if not float(score[i]) >= MIN_MATCH:
         return ends
