@@ -7,7 +7,8 @@ import cv2
 import numpy as np
 import pytest
 
-from assistbot.vision import StereoCapture, detect
+from assistbot.vision import StereoCapture
+from assistbot.vision import detect
 from assistbot.vision.library import load_calibration
 from assistbot.vision.scenes import POSE_TOLERANCE, SceneSampler, by_person, pose
 
