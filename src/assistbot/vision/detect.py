@@ -29,10 +29,7 @@ coordinates (m): an object's position is the centre of the base it stands on.
   resting arm in the image is not merged with it; blobs centred on a static spot are skipped.
   The hand is the part of the skin blob farthest from the working arm's calibrated shoulder; the
   arm's root (a feature) is where the skin meets the sleeve (the shirt blob: its colour is
-  distinct), or, with no sleeve in view, the shirt's centroid.  The hand's end is placed in depth
-  as one point of it found in both views (`_matched_end`: the left view's end sought in the right
-  image), not as each view's own end: at the head's baseline one pixel of disparity is some 5 cm
-  of depth at the hand, and two outlines' ends are seldom one point to a pixel.
+  distinct), or, with no sleeve in view, the shirt's centroid.
 """
 
 from __future__ import annotations
@@ -81,12 +78,6 @@ BEYOND_TIP_PX = 3.0        # px past the hand skin's farthest pixel where the ro
 SAME_ROW_PX = 4.0
 #: the fewest skin rows both views share that place one view's end by the other's (`_one_point`)
 MIN_SHARED_ROWS = 4
-#: the hand's end found again in the other view (`_matched_end`): a patch of this half-size (px, full resolution;
-#: about 7 cm square at the hand) round one view's end, sought along the same row within MATCH_SEARCH px of where the
-#: other view's own outline puts it, taken where its normalised correlation peaks at MIN_MATCH or more
-MATCH_HALF = 7
-MATCH_SEARCH = 16
-MIN_MATCH = 0.5
 HOG_CELL, HOG_BINS = 8, 6  # the hand crops' gradient histograms: cells (px) and orientations
 AT_GLASS_PX = 3            # half-resolution px (about 2-3 cm at the hand) around the hand's end ...
 AT_GLASS_MIN = 2           # ... holding at least this many glass pixels in each camera: the hand is at the glass
@@ -197,8 +188,7 @@ def _match(a: Blob, cands: list[Blob]) -> Blob | None:
 
 
 def _one_point(ends: list[np.ndarray], roots: list[np.ndarray], skin: list[np.ndarray]) -> list[np.ndarray]:
-    """The hand's end in the two images (u, v) as one point of the hand, where neither view's end could be found
-    in the other (`_matched_end`), from the two skin outlines alone. In one view the fingers may be
+    """The hand's end in the two images (u, v) as one point of the hand. In one view the fingers may be
     segmented off the palm (pale fingers on the pale table, a finger's shading), and that view's end then lies
     at the palm, rows short of the other's: triangulated as one point, the pair puts the hand tens of cm off.
     A row is the same in both views of a rectified pair (a length in pixels is not). Ends on rows more than
@@ -224,45 +214,6 @@ def _one_point(ends: list[np.ndarray], roots: list[np.ndarray], skin: list[np.nd
     disparity = float(at0 + slope * v)
     out = [np.asarray(e, float).copy() for e in ends]
     out[1 - k] = np.array([float(ends[k][0]) + (disparity if k == 1 else -disparity), v])
-    return out
-
-
-def _grey(img: np.ndarray, v0: int, v1: int, u0: int, u1: int) -> np.ndarray:
-    return cv2.cvtColor(np.ascontiguousarray(img[v0:v1, u0:u1]), cv2.COLOR_RGB2GRAY).astype(np.float32)
-
-
-def _matched_end(imgs, ends: list[np.ndarray], ref: int) -> list[np.ndarray]:
-    """The hand's end in the other view found as the point the reference view's end shows, rather than as that
-    view's own end. Each view's end is the mean of its outline's farthest quarter, taken on half-resolution
-    labels: the two means need not fall on one point of the hand, and at the head's 12 cm baseline one pixel of
-    disparity is about 5 cm of depth at the hand. The reference end's patch of image is sought along the same row
-    of the other (rectified) view near the other's own end, to a fraction of a pixel (a parabola through the
-    correlation's peak). A patch it does not find (hidden in the other view, cut by the border, plain) leaves the
-    ends as they were: the very list, so that the caller can tell."""
-    h, w = imgs[ref].shape[:2]
-    u, v = float(ends[ref][0]), float(ends[ref][1])
-    col, row = int(u), int(v)                       # the pixel the end lies in (pixel j spans [j, j + 1))
-    H = MATCH_HALF
-    if row - H < 0 or row + H + 1 > h or col - H < 0 or col + H + 1 > w:
-        return ends
-    patch = _grey(imgs[ref], row - H, row + H + 1, col - H, col + H + 1)
-    if float(patch.std()) < 1.0:
-        return ends
-    guess = int(float(ends[1 - ref][0]))
-    lo, hi = max(H, guess - MATCH_SEARCH), min(w - H - 1, guess + MATCH_SEARCH)
-    if hi - lo < 2:
-        return ends
-    score = cv2.matchTemplate(_grey(imgs[1 - ref], row - H, row + H + 1, lo - H, hi + H + 1), patch, cv2.TM_CCOEFF_NORMED)[0]
-    i = int(np.argmax(score))
-    if not float(score[i]) >= MIN_MATCH:
-        return ends
-    off = 0.0
-    if 0 < i < len(score) - 1:
-        a, b, c = (float(x) for x in score[i - 1:i + 2])
-        if a - 2 * b + c < 0:
-            off = 0.5 * (a - c) / (a - 2 * b + c)
-    out = [np.asarray(e, float).copy() for e in ends]
-    out[1 - ref] = np.array([lo + i + off + (u - col), v])
     return out
 
 
@@ -697,13 +648,7 @@ class Detector:
                 dev = pr - pr.sum(axis=0, keepdims=True) / len(pr)
                 sd = np.sqrt((dev * dev).sum(axis=0) / len(pr))
                 spread = [float(sd[0]), float(sd[1]), float(len(far))]
-        # one point of the hand in both views: the left view's end found in the right one, or (hidden there, say by
-        # the robot's hand) the right one's in the left; found in neither, a view whose skin stops short takes its
-        # end from the other's
-        placed = _matched_end(imgs, ends, 0)
-        if placed is ends:
-            placed = _matched_end(imgs, ends, 1)
-        ends = _one_point(ends, roots, skin) if placed is ends else placed
+        ends = _one_point(ends, roots, skin)
         Xd, Xr = triangulate(cams[0], cams[1], np.array([ends[0], roots[0]]), np.array([ends[1], roots[1]]))
         at_glass = all(_labels_near(L, end, _G, _L, AT_GLASS_PX) >= AT_GLASS_MIN for L, end in zip(lab, ends))
         # the hand's skin around its end in each camera: the left one, at the template size, is matched
