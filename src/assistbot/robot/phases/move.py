@@ -19,6 +19,9 @@ if TYPE_CHECKING:
 
 UNREACHABLE_PATIENCE = 0.3  # s in all that a Move's target may be out of reach before the move fails (3 perception ticks)
 REACH_WAIT = 12.0           # s a reaching-out move waits for its goal to come within reach
+#: s a reaching-out move holds the open hand still at its reach before it closes on a goal lying within it
+#: (`Move.close_short`): time for the person to bring what they hold in deeper, as they do when they can
+CLOSE_SHORT_WAIT = 4.0
 #: control ticks (in all) on which the IK may find no step toward the goal before a move of the arm fails
 MAX_FAILED_TICKS = 10
 #: m short of REACH that a hand reaching out toward an unreachable goal stops
@@ -48,6 +51,11 @@ class Move(Phase):
     s, for the goal to come within reach (the person, seeing the hand held out for what they hold,
     brings it closer); the move then goes on to the goal itself.
 
+    ``close_short``: for a reaching-out move, how far (m) beyond the hand held out at its reach, along the
+    approach, the goal may lie and still be taken there (0: never): an object that lies that deep in the
+    open hand is within its fingers, and a person whose arm can bring it no nearer leaves it there. After
+    CLOSE_SHORT_WAIT s still at its reach the move ends there, and the grasp closes short of the palm.
+
     ``arrive_on_touch``: a move that ends sooner, on the palm feeling something pressed into it as firmly
     as a grasp holds (GRASP_N): a person who sees the open hand held out for what they hold brings it into
     the hand, where the cameras, the hand in front, often no longer see it to follow.
@@ -58,8 +66,10 @@ class Move(Phase):
 
     def __init__(self, name: str, goal: Callable[["Primitive"], mink.SE3], duration: float = 1.5,
                  tolerance: float = 0.02, settle: float = 1.5, check_reach: bool = True, reach_out: bool = False,
-                 may_stop_above: bool = False, arrive_on_touch: bool = False) -> None:
+                 may_stop_above: bool = False, arrive_on_touch: bool = False,
+                 close_short: Callable[["Primitive"], float] | None = None) -> None:
         self.name, self.goal, self.duration = name, goal, duration
+        self.close_short = close_short
         self.arrive_on_touch = arrive_on_touch
         self.tolerance, self.settle, self.check_reach, self.reach_out = tolerance, settle, check_reach, reach_out
         self.may_stop_above = may_stop_above
@@ -85,6 +95,20 @@ class Move(Phase):
         pos[0] = max(pos[0], TCP_MIN_X)
         return poses.pose(goal.rotation(), pos)
 
+    def _lies_in_the_hand(self, prim, goal: mink.SE3, held_out: mink.SE3, t: float) -> bool:
+        """The hand, held out at its reach (``held_out``) for CLOSE_SHORT_WAIT s, has ``goal`` within
+        `close_short` of it along the approach, and no farther aside than the tolerance."""
+        if self.close_short is None or self.waited < CLOSE_SHORT_WAIT or t - self.t0 < self.duration:
+            return False
+        tcp = prim.robot.tcp_pose().translation()
+        if np.linalg.norm(tcp - held_out.translation()) > self.tolerance:
+            return False
+        off = goal.translation() - tcp
+        ax = poses.approach_axis(goal.rotation())
+        depth = float(off @ ax)
+        aside = off - depth * ax
+        return bool(0.0 <= depth <= self.close_short(prim) and np.hypot(aside[0], aside[1]) <= self.tolerance)
+
     def _stopped_above(self, prim, goal: mink.SE3) -> bool:
         off = prim.robot.tcp_pose().translation() - goal.translation()
         return bool(off[2] > 0.0 and float(np.hypot(off[0], off[1])) < self.tolerance)
@@ -97,9 +121,12 @@ class Move(Phase):
         why = unreachable(prim, goal, self.name) if self.check_reach else ""
         if why and self.reach_out:
             self.waited += dt
+            held_out = self._within_reach(prim, goal)
+            if self._lies_in_the_hand(prim, goal, held_out, t):
+                return Status.SUCCEEDED, ""
             if self.waited >= REACH_WAIT:
                 return Status.FAILED, why
-            via = poses.interpolate(self.origin, self._within_reach(prim, goal), poses.min_jerk((t - self.t0) / self.duration))
+            via = poses.interpolate(self.origin, held_out, poses.min_jerk((t - self.t0) / self.duration))
             prim.robot.move_toward(via, dt)
             self.reaching = True
             return Status.RUNNING, ""

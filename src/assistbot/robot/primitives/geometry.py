@@ -12,7 +12,7 @@ import numpy as np
 
 from assistbot import catalogue
 from assistbot.robot import poses
-from assistbot.robot.controller import REACH
+from assistbot.robot.controller import OPEN_HAND_REACH, REACH
 from assistbot.world.layout import BOTTLE_BODY_TOP, TABLE_Z
 
 if TYPE_CHECKING:
@@ -40,6 +40,13 @@ LIFT = 0.12
 #: the top of each object's side wall, where a side grasp's upper finger must stay below (m above the base):
 #: the glass's rim, the bottle's shoulder
 WALL_TOP = {"glass": catalogue.height("glass"), "bottle": BOTTLE_BODY_TOP}
+
+
+def closes_short(obj: str) -> float:
+    """How far (m) short of its grasp, along the approach, the open hand may stop and still close on ``obj``
+    held up by the person: as far as its far side stays within the open fingers' reach (OPEN_HAND_REACH
+    beyond the TCP). The person's grip steadies it while the fingers close round it."""
+    return OPEN_HAND_REACH - (2.0 * RADIUS[obj] - TCP_CYLINDER_RADIUS)
 
 
 def held_grasp_height(obj: str, hand: "Gripper") -> float:

@@ -10,7 +10,7 @@ import numpy as np
 from assistbot import catalogue
 from assistbot.robot import poses
 from assistbot.robot.phases import BackOff, Grip, Move, Open, Phase, Rise, Unroll, unreachable
-from assistbot.robot.primitives.geometry import GRASP_HEIGHT, PRE_GRASP_BACK, side_grasp_pose
+from assistbot.robot.primitives.geometry import GRASP_HEIGHT, PRE_GRASP_BACK, closes_short, side_grasp_pose
 from assistbot.task import OBJECTS
 
 if TYPE_CHECKING:
@@ -71,6 +71,13 @@ def _reach_goals(height: float | None, held_up: bool) -> list[tuple[str, Callabl
     ]
 
 
+def _closes_short(p: Primitive) -> float:
+    """How far short of the grasp the hand may close on what the person holds up (`closes_short`): for the
+    object seen, or the one the hand fits least deep when unseen which."""
+    obj = p.identify() if p.object == "held_out" else p.object
+    return closes_short(obj) if obj in catalogue.TASK_OBJECTS else min(closes_short(o) for o in catalogue.TASK_OBJECTS)
+
+
 def grasp_phase() -> Grip:
     """Close the hand on the object it has come to. A grasp that closes on nothing (the object was not where it
     was seen: put down or dropped meanwhile, say) opens and backs off level before the arm withdraws: the
@@ -83,14 +90,16 @@ def grasp_phase() -> Grip:
 
 def reach_and_grasp_phases(prim: Primitive, height: float | None = None, held_up: bool = False) -> list[Phase]:
     """Reach and grasp the target from the side: standing on the table, or ``held_up`` by the person (the
-    hand then reaches out for it as far as it can, and waits for it there: `Move.reach_out`)."""
+    hand then reaches out for it as far as it can, and waits for it there: `Move.reach_out`; held where
+    the arm cannot reach, but within the open hand held out, it closes on it there: `Move.close_short`)."""
     return [
         Open("open"),
         Rise("rise", READY_POSE_POS[2]),
         Unroll(),
         Move("ready", lambda p: poses.pose(mink.SO3.identity(), READY_POSE_POS), duration=1.2, tolerance=0.04),
         *(Move(name, goal, duration=duration, tolerance=tolerance, reach_out=held_up,
-               arrive_on_touch=held_up and name == "approach")
+               arrive_on_touch=held_up and name == "approach",
+               close_short=_closes_short if held_up and name == "approach" else None)
           for name, goal, duration, tolerance in _reach_goals(height, held_up)),
         grasp_phase(),
     ]
