@@ -416,8 +416,16 @@ def put_down(c, object: str | None = None, at: tuple[float, float] | None = None
 
 def put_down_for_robot(c) -> Gen:
     """Asked to set what the hand holds down under the robot's hand: put it down on the table below the
-    robot's hand as seen, as close to it as the arm goes."""
+    robot's hand as seen, as close to it as the arm goes. With the hand empty, "it" is what she was handing
+    over: asked while she was putting it down on her side after a hand-over that failed, she picks it up
+    again first (asked with the hand already empty, the policy has her grasp it before this)."""
     held = c.world.human_holding()
+    offered = c.policy_state.get("offered")
+    if held is None and offered in catalogue.TASK_OBJECTS and _pos(c, offered)[0] < 0:
+        ok, why = yield from grasp(c, offered, c.profile.hand_over_grip(offered))
+        if not ok:
+            return False, why
+        held = c.world.human_holding()
     if held not in catalogue.TASK_OBJECTS:
         return False, "nothing in hand to set down"
     # the robot's open hand comes to show the place: wait until it is held out there, still

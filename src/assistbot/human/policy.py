@@ -79,8 +79,7 @@ def response_to_tag(c, tag: str) -> list[tuple[str, dict]]:
         # robot's reach; she picks it up again and sets it down under the robot's hand
         offered = c.policy_state.get("offered")
         if offered in catalogue.TASK_OBJECTS and _scene(c)[offered + "_x"] < 0:
-            grip = c.profile.grip if offered == "bottle" else "sg"
-            return [("grasp", {"object": offered, "grip": grip}), ("put_down_for_robot", {})]
+            return [("grasp", {"object": offered, "grip": c.profile.hand_over_grip(offered)}), ("put_down_for_robot", {})]
     if tag == "error:cannot_remove_stopper" and holding == "bottle" and c.profile.initiative:
         # the robot cannot take the bottle from a side grip: put it down, offer it from above
         return [("put_down", {"object": "bottle"}), ("hand_to_robot", {"object": "bottle", "grip": "ag"})]

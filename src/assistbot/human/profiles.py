@@ -50,6 +50,10 @@ class Profile:
         """The grip this person pours with."""
         return GRIP_CONVENTIONS[self.grip_convention][1]
 
+    def hand_over_grip(self, obj: str) -> str:
+        """The grip this person hands ``obj`` over with: the bottle with their own, the glass from the side."""
+        return self.grip if obj == "bottle" else "sg"
+
     @property
     def hold_out_offset(self) -> tuple[float, float, float]:
         return (self.hold_out_dx, self.hold_out_dy, self.hold_out_dz)
