@@ -14,7 +14,7 @@ _PACKAGE = resources.files("assistbot")
 MJCF = Path(str(_PACKAGE / "assets" / "mjcf"))
 #: the vision template library and the colour calibration (`assistbot templates` writes them)
 TEMPLATES = Path(str(_PACKAGE / "assets" / "templates"))
-#: labelled scenes the shipped template library is learnt from (720 per hand posture)
-LIBRARY_SCENES = 6480
+#: labelled scenes the shipped template library is learnt from (2160 per hand posture)
+LIBRARY_SCENES = 19440
 #: the shipped scenarios, their sweeps and percept timelines
 SCENARIOS = Path(str(_PACKAGE / "scenarios"))
