@@ -561,6 +561,26 @@ def test_asked_to_set_it_down_with_an_empty_hand_she_fetches_what_she_was_handin
     assert np.hypot(g[0] - spot[0], g[1] - spot[1]) < 0.05, g
 
 
+def test_asked_to_set_it_down_while_she_puts_it_down_on_her_side_she_picks_it_up_again():
+    # her hand-over failed and she is putting the bottle down on her side when the robot shows a spot and asks
+    # her to set "it" down there: asked with the bottle in hand, she answers once it stands on her side, by
+    # picking it up again and setting it down there
+    w, s, hc = _setup(_arr({"zone": "HWS", "state": "closed"}, {"zone": "RWS", "state": "empty"}))
+    hc.start("grasp", object="bottle", grip="ag")
+    _ok(_run_until_done(hc, s, 20.0, "grasp"), "grasp")
+    hc.policy_state["offered"] = "bottle"          # as `hand_to_robot` leaves it
+    hc.start("put_down", object="bottle")
+    hc.run(0.05, robot=s.tick)
+    spot = (-0.06, 0.0)
+    s.place((spot[0], spot[1], layout.TABLE_Z + 0.30))      # the robot's open hand held above the spot
+    hc.hear("request:put_down_here", w.time)      # heard while the bottle is still in her hand
+    _ok(_run_until_done(hc, s, 60.0, "put_down_for_robot"), "put_down_for_robot")
+    assert [e.what for e in hc.events("start")] == ["grasp", "put_down", "put_down_for_robot"]
+    b = w.data.xpos[w.body_id["bottle"]]
+    assert w.state().human_holds is None and w.state().objects["bottle"].upright
+    assert np.hypot(b[0] - spot[0], b[1] - spot[1]) < 0.05, b
+
+
 def test_what_she_set_down_for_the_robot_she_leaves_to_it():
     # an active person asked to set the closed bottle down under the robot's hand does so and then leaves it
     # there for the robot to take: her own initiative (hold the closed bottle out to have it opened) would
