@@ -52,7 +52,7 @@ class Move(Phase):
     brings it closer); the move then goes on to the goal itself.
 
     ``close_short``: for a reaching-out move, how far (m) beyond the hand held out at its reach, along the
-    approach, the goal may lie and still be taken there (0: never): an object that lies that deep in the
+    approach, the goal may lie and still be taken there (None: never): an object that lies that deep in the
     open hand is within its fingers, and a person whose arm can bring it no nearer leaves it there. After
     CLOSE_SHORT_WAIT s still at its reach the move ends there, and the grasp closes short of the palm.
 
