@@ -24,6 +24,8 @@ FAR = Partner(body=Body(upper_arm=0.90, forearm=0.94, shoulder_height=0.95, seat
 def _receive_what_is_brought(monkeypatch, feel: bool):
     if not feel:
         monkeypatch.setattr(move, "GRASP_N", float("inf"))
+        # nor closing where it was last seen after waiting for it (`Move.close_short`): only the touch tells
+        monkeypatch.setattr(move, "CLOSE_SHORT_WAIT", float("inf"))
     w = build_world(Arrangement.from_options("RWS:closed@0.20,0.20", "HWS:inverted"), seed=0, body=FAR.body)
     robot = RobotController(w.model, w.data)
     human = HumanController(w, config=parse_human({"profile": "passive", "partner": FAR.to_dict()}))
