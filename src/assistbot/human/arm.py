@@ -357,6 +357,8 @@ class HumanArm:
                 # unregulated the held object swayed twice the drawn amplitude. Its deviation from the planned path
                 # is the tremor and slow lags, which the lock-in ignores
                 self._tremor.observe(t, self.hand_pose()[0] - self._planned(t)[0])
+            else:
+                self._tremor.pause()
         q, biggest = self._follow(t, iterations)
         self.q = q
         self._settled = not moving and biggest < SETTLED_STEP

@@ -40,6 +40,9 @@ class Tremor:
         self._hand = np.zeros(2)           # the hand's oscillation at the frequency (in-phase, quadrature)
         self._command = np.zeros(2)        # the command's
         self._seen = 0.0                   # s observed
+        self._fresh = 0.0                  # s observed since the hand was last watched again (`pause`)
+        self._paused = False
+        self._known = False                # the arm's gain has been measured once (the scale then follows it)
 
     def _phase(self, t: float) -> float:
         return 2.0 * math.pi * self.frequency * t
@@ -50,11 +53,21 @@ class Tremor:
         onset = min(1.0, self._seen / (2.0 * WINDOW))
         return onset * self.scale * self.amplitude * math.sin(self._phase(t)) * self.direction
 
+    def pause(self) -> None:
+        """The hand is not watched for a while (braced on something stiff). What it made before does not tell
+        what it makes when it is watched again: the load in it may have changed (an object taken over), and the
+        first moments free are the spring-back of the brace let go, not the tremor. So the demodulation starts
+        afresh then, and the command keeps its scale until a whole window has been watched."""
+        self._paused = True
+
     def observe(self, t: float, off) -> None:
         """Take in how far the measured hand is off its planned position (world, m) at time t and rescale the
         command."""
         if self.amplitude == 0.0:
             return
+        if self._paused:
+            self._paused, self._fresh, self._mean = False, 0.0, None
+            self._hand, self._command = np.zeros(2), np.zeros(2)
         y = float(np.asarray(off, float) @ self.direction)
         self._mean = y if self._mean is None else self._mean + self._rate * (y - self._mean)
         ref = np.array([math.sin(self._phase(t)), math.cos(self._phase(t))])
@@ -62,9 +75,15 @@ class Tremor:
         self._hand += self._rate * ((y - self._mean) * ref - self._hand)
         self._command += self._rate * (c * ref - self._command)
         self._seen += self._dt
-        if self._seen < WINDOW:
+        self._fresh += self._dt
+        if self._fresh < WINDOW:
             return
         made, asked = float(np.hypot(*self._hand)), float(np.hypot(*self._command))
         if made > 0.0 and asked > 0.0:
-            # made / asked is the arm's gain at this frequency now: command the drawn amplitude over it
-            self.scale = float(np.clip(asked / made, *SCALE_RANGE))
+            # made / asked is the arm's gain at this frequency now: command the drawn amplitude over it. The
+            # scale follows it over a window (in ratio), as the gain itself changes no faster: a slow swing of
+            # the hand (a sag under a load just taken) read for a moment as little tremor must not triple it
+            want = float(np.clip(asked / made, *SCALE_RANGE))
+            follow = self._rate if self._known else 1.0
+            self.scale = float(np.clip(self.scale * (want / self.scale) ** follow, *SCALE_RANGE))
+            self._known = True
