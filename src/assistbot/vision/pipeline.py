@@ -223,6 +223,11 @@ class Vision:
             near = min(seen_objs, key=lambda n: _norm(seen_objs[n][:2] - X[:2]))
             if posture in ("grasp_ag", "grasp_sg") and _norm(seen_objs[near][:2] - X[:2]) < IN_HAND_END_XY:
                 hp.object_in_hand = near
+            elif posture in ("grasp_ag", "grasp_sg") and o is not None:
+                # lifted right at the hand's end, it is in the hand: a hand holding from above hides its own
+                # fingers behind what it holds, so its end is seen back at the wrist (a long hand's palm
+                # then lies a hand's length behind the object)
+                hp.object_in_hand = near = o.type
             if posture in ("reach", "grasp_ag", "grasp_sg"):
                 hp.directed_at = near
             if posture == "pointing":
