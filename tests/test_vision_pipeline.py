@@ -672,3 +672,23 @@ def test_an_object_held_up_from_above_is_placed_at_the_height_of_its_base():
     the hand does not hide, places it within a centimetre."""
     errors = np.array(_lifted_height_errors(build_world(PAPER_ARRANGEMENTS["fig3"], 0), "grasp_ag", 12))
     assert np.median(np.abs(errors)) < 0.01 and np.abs(errors).max() < 0.02
+
+
+def test_a_glass_lifted_at_a_grasping_hand_whose_end_is_seen_back_at_the_wrist_is_in_that_hand():
+    """A long hand holding the glass from above hides its fingers behind the glass: the hand's end is seen at the
+    wrist, 13 cm behind the glass's axis (and the hand's centre, a grip's offset further back, farther still). The
+    glass lifted right at that end is in the hand: the robot must not take the hand for an empty one (it carried
+    the bottle it was offering into the glass she held out, which fell)."""
+    from assistbot.cognition.percept import ObjectPercept, Percept
+    from assistbot.vision.detect import Detections, HandDetection, ObjectDetection
+
+    v = Vision()
+    v.classifiers = {**v.classifiers, "hand": _Reads(v.classifiers["hand"].classes, "grasp_ag")}
+    glass = np.array([-0.236, 0.159, 0.05])            # its base 5 cm above the table
+    end = glass + np.array([-0.13, 0.0, 0.09])
+    det = Detections(objects={n: ObjectDetection(n, False, None) for n in ("bottle", "glass")},
+                     hand=HandDetection(True, position=end, proximal=end - np.array([0.25, 0.0, 0.05])))
+    objs = {"bottle": ObjectPercept("bottle", "RWS", "open", (0.2, 0.12, 0.0)),
+            "glass": ObjectPercept("glass", "HWS", "empty", tuple(glass))}
+    hp = v._hand(det, Percept(t=1.0, objects=objs))
+    assert hp.posture == "grasp_ag" and hp.object_in_hand == "glass", hp
