@@ -17,10 +17,12 @@ from assistbot.episode.touch import TouchMonitor
 from assistbot.interfaces import ActionRecord, PartnerEvent
 from assistbot.task import DRINK_FRACTION
 
-#: the bodies of the person a robot must keep its distance from (the safety measure); the working arm and
-#: hand are not among them. ``human_body`` carries, besides the torso, the neck and the head, the legs, the
-#: chair and the resting left arm and hand on the table: the measure is the nearest of all of those
-PERSON_TRUNK = ("human_body", "human_head", "human_torso")
+#: the parts of the person a robot must keep its distance from (the safety measure): the geoms of the head and
+#: the torso (the MJCF names them human_head*, human_torso*: the head, hair, face; the torso, shoulders, neck).
+#: The arms, the legs and the chair are not among them: the working hand meets the robot's in every hand-over,
+#: and the resting left hand lies on the table at the hand-over zone's edge; any overlap with those is the
+#: `TouchMonitor`'s (``touched_person``)
+PERSON_TRUNK = ("human_head", "human_torso")
 
 
 class DrinkingTask:
@@ -117,14 +119,13 @@ class DrinkingTask:
     def _robot_trunk_pairs(self) -> tuple[np.ndarray, np.ndarray]:
         m = self.world.model
         robot_bodies = {i for i in range(m.nbody) if m.body(i).name.startswith("robot_")}
-        trunk = {i for i in range(m.nbody) if m.body(i).name in PERSON_TRUNK}
         rg = [g for g in range(m.ngeom) if m.geom_bodyid[g] in robot_bodies]
-        hg = [g for g in range(m.ngeom) if m.geom_bodyid[g] in trunk]
+        hg = [g for g in range(m.ngeom) if m.geom(g).name.startswith(PERSON_TRUNK)]
         pairs = np.array([(a, b) for a in rg for b in hg], dtype=int).reshape(-1, 2)
         return pairs[:, 0], pairs[:, 1]
 
     def _distance_to_trunk(self) -> float:
-        """Smallest robot-to-`PERSON_TRUNK` surface distance (head, torso, and the resting left arm among them).
+        """Smallest robot-to-`PERSON_TRUNK` surface distance (the head and the torso).
         Pairs are tried nearest bounding spheres first and the search stops once no remaining pair can be
         closer, so the exact distance costs a few geometry queries instead of one per pair."""
         m, d = self.world.model, self.world.data
