@@ -21,6 +21,7 @@ from assistbot.robot.primitives.reaching import REST_POSE_POS, TOP_CLEARANCE
 from assistbot.robot.sim import CONTROL_DT, body_lift, body_xy, run
 from assistbot.task.drinking import ROBOT_ACTIONS
 from assistbot.world import Arrangement, build_world
+from assistbot.world.layout import TABLE_Z
 
 
 def make(bottle: str, glass: str):
@@ -237,6 +238,29 @@ def test_stopper_hold_times_out_with_a_reason():
     pr, s = run(w, prim, body_xy(w, "bottle"), seconds=25)
     assert pr.status is Status.FAILED and "stopper" in pr.reason
     assert_safe(s)
+
+
+@pytest.mark.slow
+def test_a_stopper_nobody_pulls_is_not_waited_for_until_the_episode_counts_as_stalled():
+    """Nobody pulls the stopper (or the cameras do not see it come off: the hand hides the bottle's top): the hold
+    gives up, and the bottle is set down on the table again, before the arm has been still for as long as the
+    judge calls a stalled episode (a partner's episode ended so, the hand held out with the opened bottle)."""
+    from assistbot.episode.judge import MOVING_SPEED, STALL_SECONDS
+
+    w, robot = make("RWS:closed", "HWS:empty")
+    prim = P.HoldBottleForStopper(robot)
+    arm = [w.model.jnt_dofadr[w.model.joint(f"robot_j{i}").id] for i in range(1, 8)]
+    still = {"since": 0.0, "longest": 0.0}
+
+    def watch(t):
+        if np.abs(w.data.qvel[arm]).max() > MOVING_SPEED:
+            still["since"] = t
+        still["longest"] = max(still["longest"], t - still["since"])
+    pr, _ = run(w, prim, body_xy(w, "bottle"), seconds=60, each_tick=watch)
+    assert pr.status is Status.FAILED and "stopper" in pr.reason
+    assert still["longest"] < STALL_SECONDS, still
+    b = w.state().objects["bottle"]
+    assert b.held_by is None and b.upright and b.zone == "RWS" and b.pos[2] < TABLE_Z + 0.01, w.state().summary()
 
 
 # --------------------------------------------------------------------------- hand-over to the human

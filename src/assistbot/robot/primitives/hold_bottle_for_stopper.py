@@ -37,7 +37,7 @@ class HoldBottleForStopper(Primitive):
     HOLD_XY = (TCP_MIN_X + OFFER_X_MARGIN, -0.02)
     HOLD_BASE = OFFER_BASE[0]
 
-    def __init__(self, robot, obj="bottle", timeout: float = 30.0, **kw):
+    def __init__(self, robot, obj="bottle", timeout: float = 20.0, **kw):
         super().__init__(robot, obj, **kw)
         self.timeout = timeout
         self.home_xy: np.ndarray | None = None
@@ -49,17 +49,19 @@ class HoldBottleForStopper(Primitive):
             self.home_xy = free_rws_spot(self)
         return self.home_xy
 
+    def _wait_for_the_stopper(self) -> WaitFor:
+        """Hold the bottle steady until the stopper is seen off it. Not seen off within ``timeout`` s (she does not
+        pull it, or the hand hides the bottle's top from the cameras once she has), the hold fails, and the bottle
+        is set down (`Primitive`'s safe end) where the cameras see whether it is open: sooner than an episode
+        with the arm held still is judged stalled (`episode.judge.STALL_SECONDS`)."""
+        return WaitFor("hold steady for the stopper", lambda p: p.stopper_removed(), self.timeout, "the stopper was not removed")
+
     def interrupted(self, phase) -> str:
         return no_longer_held_out(self, phase) if self._from_her_hand else ""
 
     def phases(self):
         self._from_her_hand = False
-        hold = [
-            *hold_out(self.HOLD_BASE, self.HOLD_XY),
-            WaitFor("hold steady for the stopper", lambda p: p.stopper_removed(), self.timeout,
-                    "the stopper was not removed"),
-            Wait("settle", 0.3),
-        ]
+        hold = [*hold_out(self.HOLD_BASE, self.HOLD_XY), self._wait_for_the_stopper(), Wait("settle", 0.3)]
         if self.xy()[0] < 0.0 and not self.human_holds() and reachable_on_table(self):
             # standing on the person's side, put down there for the robot: from the table, back to the RWS.
             # Beyond the arm's reach it is not the robot's to take from there: she is about to pick it
@@ -94,8 +96,7 @@ class HoldBottleForStopper(Primitive):
             RememberPlace(),
             Move("lift", lambda p: side_grasp_pose(p, up=LIFT), duration=1.2),
             *hold_out(self.HOLD_BASE, self.HOLD_XY),
-            WaitFor("hold steady for the stopper", lambda p: p.stopper_removed(), self.timeout,
-                    "the stopper was not removed"),
+            self._wait_for_the_stopper(),
             Wait("settle", 0.3),
             *put_down_at(lambda p: p.home_xy),
             *retract_phases(),
