@@ -16,13 +16,14 @@ from assistbot.episode.judge import Judge
 from assistbot.episode.touch import TouchMonitor
 from assistbot.interfaces import ActionRecord, PartnerEvent
 from assistbot.task import DRINK_FRACTION
+from assistbot.world.layout import PERSON_HEAD_AND_TORSO
 
 #: the parts of the person a robot must keep its distance from (the safety measure): the geoms of the head and
-#: the torso (the MJCF names them human_head*, human_torso*: the head, hair, face; the torso, shoulders, neck).
+#: the torso (`layout.PERSON_HEAD_AND_TORSO`, and the geoms named with those as prefixes: hair, face; shoulders, neck).
 #: The arms, the legs and the chair are not among them: the working hand meets the robot's in every hand-over,
 #: and the resting left hand lies on the table at the hand-over zone's edge; any overlap with those is the
 #: `TouchMonitor`'s (``touched_person``)
-PERSON_TRUNK = ("human_head", "human_torso")
+PERSON_TRUNK = PERSON_HEAD_AND_TORSO
 
 
 class DrinkingTask:

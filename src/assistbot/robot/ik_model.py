@@ -21,7 +21,7 @@ from assistbot import catalogue
 from assistbot.world import layout
 
 ARM_JOINTS: tuple[str, ...] = tuple(f"robot_j{i}" for i in range(1, 8))
-HUMAN_BODY_GEOMS: tuple[str, ...] = ("human_head", "human_torso")
+HUMAN_BODY_GEOMS: tuple[str, ...] = layout.PERSON_HEAD_AND_TORSO
 TABLE_GEOMS: tuple[str, ...] = ("table_top",)
 #: robot geoms that move with the arm (the pedestal and column do not)
 ARM_GEOMS: tuple[str, ...] = (

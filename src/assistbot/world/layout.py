@@ -39,6 +39,10 @@ HANDOVER_ZONE_X = (-0.15, 0.08)
 #: where a removed stopper stands (in the HWS, at the human's left hand)
 STOPPER_PARK = (-0.30, 0.36)
 
+#: the person's head and torso as the MJCF names their main geoms; their other parts (hair, face; shoulders,
+#: neck) carry these names as prefixes. What the robot's arm must keep clear of, and what safety is measured to
+PERSON_HEAD_AND_TORSO = ("human_head", "human_torso")
+
 
 def standing_limits(radius: float) -> tuple[float, float, float]:
     """Where an object of ``radius`` may stand (table x, y): |x| <= xmax and |y| <= ymax keep it EDGE_MARGIN
