@@ -56,3 +56,37 @@ def test_reset_forgets_and_a_new_target_takes_over():
     settle_on(tf, (0.0, 0.3))
     x, y = tf.target()
     assert np.hypot(x, y - 0.3) < 0.01
+
+
+def test_holds_the_target_for_ten_seconds_without_input_wherever_it_lies_between_field_positions():
+    # the arm hides what it reaches for for seconds on end; the peak must neither die nor wander
+    tf0 = TargetField()
+    step = tf0.p.resolution
+    for fx, fy in ((0.0, 0.0), (0.5, 0.0), (0.0, 0.5), (0.5, 0.5), (0.3, 0.7)):
+        xy = (-0.1125 + fx * step, -0.05 + fy * step)
+        tf = TargetField()
+        settle_on(tf, xy, seconds=1.0)
+        for _ in range(500):  # 10 s
+            tf.observe(None)
+            tf.advance(TICK)
+        x, y = tf.target()
+        assert np.hypot(x - xy[0], y - xy[1]) < 0.01, (fx, fy)
+
+
+def test_a_target_held_out_across_the_middle_line_is_estimated_where_it_is():
+    # the person's hand far across the middle line: the field reaches past it, so the peak is not cut by its edge
+    for xy in ((-0.2, 0.0), (-0.3, 0.1), (-0.25, -0.2)):
+        tf = TargetField()
+        settle_on(tf, xy)
+        x, y = tf.target()
+        assert np.hypot(x - xy[0], y - xy[1]) < 0.01, xy
+
+
+def test_a_target_that_jumps_is_taken_up_within_half_a_second():
+    tf = TargetField()
+    settle_on(tf, (0.3, 0.0), seconds=1.0)
+    for k in range(25):
+        tf.observe((0.3, 0.1))
+        tf.advance(TICK)
+    x, y = tf.target()
+    assert np.hypot(x - 0.3, y - 0.1) < 0.01

@@ -2,7 +2,7 @@
 holds it there, and one whose object the robot's hand has taken hold of. Its grip then bears only what a still
 hand's does. Were the commanded tremor to go on, the hand would press the object into the table, or pull it against
 the robot's fingers, with a force no hand makes, and tear its own grip open (or, against the robot's fingers,
-come near to: twice what a still hand's grip bears). In the physics."""
+come near to it). In the physics."""
 
 from __future__ import annotations
 
@@ -91,7 +91,10 @@ def _robot_takes_the_glass_from_a_trembling_hand():
 
 def test_a_trembling_hand_lets_go_of_what_the_robot_has_taken_hold_of():
     w, human, pr, peak = _robot_takes_the_glass_from_a_trembling_hand()
-    assert peak < 0.6 * HUMAN_GRIP_YIELD_FORCE, peak      # what a still hand's grip bears as the robot takes it
+    # what a still hand's grip bears as the robot takes it: the fingers close at some phase of the tremor and the
+    # arm then holds the glass there, up to the tremor's amplitude off where her hand settles (9.8 N and 12.1 N
+    # measured for two closings a few ticks apart); a tremor going on in the grip reaches 0.75 of the yield or tears it
+    assert peak < 0.7 * HUMAN_GRIP_YIELD_FORCE, peak
     assert pr.status is P.Status.SUCCEEDED, pr.reason
     assert [(b.name, b.status.value) for b in human.done] == [("hand_to_robot", "succeeded")], human.done
     assert not w.grip_yields          # she let go; the glass was not torn from her fingers

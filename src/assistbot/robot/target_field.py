@@ -20,18 +20,22 @@ from assistbot.fields import Network
 
 @dataclass
 class TargetFieldParams:
-    # the robot's side of the table and the hand-over zone across the middle line
-    x_range: tuple[float, float] = (-0.25, 0.7)
-    y_range: tuple[float, float] = (-0.5, 0.5)
-    resolution: float = 0.025  # m per field position
+    # the robot's side of the table and, across the middle line, the whole region where a person may hold
+    # something out, with a kernel's width to spare: a peak cut by the field's edge sits off its input
+    x_range: tuple[float, float] = (-0.45, 0.8)
+    y_range: tuple[float, float] = (-0.55, 0.55)
+    # m per field position: well below the kernel's width, so that a peak between two positions is as
+    # strong as one on a position (on a grid as coarse as the kernel, such a peak dies within a second
+    # without input, and a grid-centred one is pinned where it is)
+    resolution: float = 0.0125
     tau: float = 0.03  # s
     h: float = -3.0
     beta: float = 4.0
-    # per m^2: sustains a peak without input. Weak global inhibition lets a
-    # moving input drag the peak instead of being suppressed by it.
-    A: float = 1500.0
+    # per m^2: sustains a peak without input, anywhere. Global inhibition keeps it one narrow peak that a
+    # moving input drags along, and lets an input far from it win within a fraction of a second
+    A: float = 2500.0
     sigma: float = 0.03  # m
-    w_inhib: float = 50.0
+    w_inhib: float = 200.0
     input_amplitude: float = 10.0
     input_sigma: float = 0.03  # m
     dt: float = 0.01  # s per Euler step: two per 50 Hz control tick
