@@ -15,9 +15,9 @@ from assistbot.robot.controller import RobotController
 from assistbot.robot.sim import body_xy, run
 from assistbot.world import Arrangement, build_world
 
-#: a person whose reach ends within a centimetre of the point above the stopper held as it is now: the hold lies at the
-#: robot's reach too, so the bottle sits where the grasp put it in the hand (a grasp centred 7 mm nearer its axis
-#: holds the stopper 4 mm nearer the robot, beyond the reach of a range of motion narrowed by 20 %)
+#: a person whose reach ends within a centimetre of the point above the stopper as it is held: the hold lies at the
+#: robot's reach too, so the bottle sits where the grasp put it in the hand, to a few mm (docs/measurements.md,
+#: "The run at 3614824")
 STIFF = Body(upper_arm=0.90, forearm=0.93, shoulder_height=0.94, seat_back=0.06, seat_side=0.06, rom=0.15)
 #: where the bottle was held for the stopper before: its centre (table x, y) and its base above the table
 FORMER_HOLD = ((-0.045, -0.02), 0.10)

@@ -92,8 +92,8 @@ def _robot_takes_the_glass_from_a_trembling_hand():
 def test_a_trembling_hand_lets_go_of_what_the_robot_has_taken_hold_of():
     w, human, pr, peak = _robot_takes_the_glass_from_a_trembling_hand()
     # what a still hand's grip bears as the robot takes it: the fingers close at some phase of the tremor and the
-    # arm then holds the glass there, up to the tremor's amplitude off where her hand settles (9.8 N and 12.1 N
-    # measured for two closings a few ticks apart); a tremor going on in the grip reaches 0.75 of the yield or tears it
+    # arm then holds the glass there, up to the tremor's amplitude off where her hand settles (docs/measurements.md,
+    # "The run at 3614824"); a tremor going on in the grip reaches 0.75 of the yield or tears it
     assert peak < 0.7 * HUMAN_GRIP_YIELD_FORCE, peak
     assert pr.status is P.Status.SUCCEEDED, pr.reason
     assert [(b.name, b.status.value) for b in human.done] == [("hand_to_robot", "succeeded")], human.done
