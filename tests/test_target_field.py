@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from assistbot.robot.target_field import TargetField
+from assistbot.robot.target_field import TargetField, TargetFieldParams
 
 TICK = 0.02  # 50 Hz control
 
@@ -60,8 +60,7 @@ def test_reset_forgets_and_a_new_target_takes_over():
 
 def test_holds_the_target_for_ten_seconds_without_input_wherever_it_lies_between_field_positions():
     # the arm hides what it reaches for for seconds on end; the peak must neither die nor wander
-    tf0 = TargetField()
-    step = tf0.p.resolution
+    step = TargetFieldParams().resolution
     for fx, fy in ((0.0, 0.0), (0.5, 0.0), (0.0, 0.5), (0.5, 0.5), (0.3, 0.7)):
         xy = (-0.1125 + fx * step, -0.05 + fy * step)
         tf = TargetField()
@@ -85,7 +84,7 @@ def test_a_target_held_out_across_the_middle_line_is_estimated_where_it_is():
 def test_a_target_that_jumps_is_taken_up_within_half_a_second():
     tf = TargetField()
     settle_on(tf, (0.3, 0.0), seconds=1.0)
-    for k in range(25):
+    for _ in range(25):  # 0.5 s
         tf.observe((0.3, 0.1))
         tf.advance(TICK)
     x, y = tf.target()
