@@ -1,0 +1,114 @@
+"""How much room the robot's hand leaves the person's on the full glass it holds out: for each way of gripping
+it, the largest clearance between any of the person's hand geoms and any of the robot's, over the poses of
+that grip on the glass. Negative: the hands overlap by that much at best.
+
+Run: .venv/bin/python benchmarks/handover_room.py
+
+Runs the shipped Fig. 4 scenario (oracle percept) until the robot has held the full glass out for 0.6 s,
+then places the person's hand (its geoms in the open posture and in the grip's closed one, as the MJCF
+has them relative to the hand) in each candidate pose and measures it against the robot's hand with
+`mujoco.mj_geomDistance`; nothing is simulated further. A candidate pose puts the hand's grasp site on
+the glass (within SITE_ON_GLASS of its wall, as a grip that holds), at a height above the glass's base,
+with the fingers turned about the vertical by a yaw from the line from the shoulder, the hand shifted
+along its fingers and off the glass. The grips: the side grip turned about the fingers' axis from thumb
+up (the person's side grip) toward palm down (her grip from above), with any yaw or with the fingers within
+15 deg of the line from the shoulder (as a right arm reaches).
+"""
+
+from __future__ import annotations
+
+import itertools
+
+import mujoco
+import numpy as np
+
+from assistbot import catalogue
+from assistbot.episode.builder import build_episode
+from assistbot.human.arm import ORIENT, rot_z
+from assistbot.robot.primitives.handing_over import OFFER_PHASE
+from assistbot.scenario import load_scenario
+from assistbot.world.world import HAND_POSTURES, HUMAN_HAND_JOINTS
+
+#: the person's hand: the bodies whose geoms are placed
+HAND_BODIES = ("human_r_hand", "human_r_index", "human_r_fingers", "human_r_thumb")
+#: m: the farthest the grasp site lies outside the glass's wall in a candidate pose
+SITE_ON_GLASS = 0.01
+#: (name, turn about the fingers' axis from thumb up toward palm down in degrees, closed posture, the most the
+#: fingers turn from the line from the shoulder in degrees)
+GRIPS = (("side grip, thumb up", 0, "sg", 90), ("side grip, thumb up, +-15", 0, "sg", 15),
+         ("side grip turned 30 deg", 30, "sg", 90), ("side grip turned 60 deg", 60, "sg", 90),
+         ("from above, palm down", 90, "ag", 90), ("from above, +-15", 90, "ag", 15))
+HEIGHTS = np.arange(0.02, 0.101, 0.01)
+YAWS = np.radians(np.arange(-90, 91, 15))
+ALONG = np.arange(-0.04, 0.021, 0.02)
+OFF = np.arange(-0.01, 0.031, 0.01)
+
+
+def _held_out(ep) -> None:
+    since = None
+    while not ep.tick():
+        prim = ep.actor.primitive
+        if prim is not None and prim.progress.phase == OFFER_PHASE:
+            since = since if since is not None else ep.world.time
+            if ep.world.time > since + 0.6:
+                return
+    raise SystemExit("the episode ended before the robot held the glass out")
+
+
+def _hand_in_posture(m, d, posture: str):
+    """The hand's geoms relative to the hand body, the fingers in ``posture``; and the grasp site's."""
+    d2 = mujoco.MjData(m)
+    d2.qpos[:] = d.qpos
+    for j, q in zip(HUMAN_HAND_JOINTS, HAND_POSTURES[posture]):
+        d2.qpos[m.joint(j).qposadr[0]] = q
+    mujoco.mj_kinematics(m, d2)
+    hb = m.body("human_r_hand").id
+    R, p = d2.xmat[hb].reshape(3, 3), d2.xpos[hb]
+    bodies = [b for b in range(m.nbody) if m.body(b).name.startswith(HAND_BODIES)]
+    geoms = [(g, R.T @ (d2.geom_xpos[g] - p), R.T @ d2.geom_xmat[g].reshape(3, 3))
+             for g in range(m.ngeom) if m.geom_bodyid[g] in bodies]
+    return geoms, R.T @ (d2.site_xpos[m.site("human_r_grasp").id] - p)
+
+
+def main() -> None:
+    ep = build_episode(load_scenario("fig4-fill-and-hand-over"), perception="oracle")
+    m, d = ep.world.model, ep.world.data
+    _held_out(ep)
+    glass = d.xpos[ep.world.body_id["glass"]].copy()
+    robot = [g for g in range(m.ngeom) if m.body(m.geom_bodyid[g]).name.startswith("robot_")
+             and np.linalg.norm(d.geom_xpos[g] - glass) < 0.25]
+    scratch = mujoco.MjData(m)
+    scratch.qpos[:] = d.qpos
+    mujoco.mj_kinematics(m, scratch)
+    shoulder = ep.partner.arm.shoulder_xy
+    bearing = float(np.arctan2(glass[1] - shoulder[1], glass[0] - shoulder[0]))
+    radius, height = catalogue.radius("glass"), catalogue.height("glass")
+
+    def clearance(geoms, R, p) -> float:
+        for g, pr, Rr in geoms:
+            scratch.geom_xpos[g] = p + R @ pr
+            scratch.geom_xmat[g] = (R @ Rr).ravel()
+        return min(mujoco.mj_geomDistance(m, scratch, g, r, 0.05, None) for g, _, _ in geoms for r in robot)
+
+    opened, site = _hand_in_posture(m, d, "open")
+    print(f"the robot holds the full glass out at {np.round(glass, 3)} m; clearance (cm, + apart, - overlapping) "
+          "of the best pose of each grip at each height of its grasp site above the glass's base:")
+    print(f"{'grip':26s}" + "".join(f"{100 * s:6.0f}" for s in HEIGHTS))
+    for name, turn, posture, turned in GRIPS:
+        closed, _ = _hand_in_posture(m, d, posture)
+        best = {}
+        for s, yaw, along, off in itertools.product(HEIGHTS, YAWS[np.abs(YAWS) <= np.radians(turned) + 1e-9], ALONG, OFF):
+            R = rot_z(bearing + yaw) @ ORIENT["sg"] @ rot_z(np.radians(turn))
+            target = glass + np.array([0.0, 0.0, s]) - along * -R[:, 2] - off * R[:, 1]
+            radial = float(np.hypot(*(target - glass)[:2])) - radius
+            axial = max(-(target - glass)[2], (target - glass)[2] - height, 0.0)
+            if max(radial, axial) > SITE_ON_GLASS:
+                continue
+            p = target - R @ site
+            c = min(clearance(opened, R, p), clearance(closed, R, p))
+            best[round(s, 2)] = max(best.get(round(s, 2), -1.0), c)
+        print(f"{name:26s}" + "".join(f"{100 * best.get(round(s, 2), np.nan):+6.1f}" for s in HEIGHTS))
+
+
+if __name__ == "__main__":
+    main()
