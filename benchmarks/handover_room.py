@@ -27,7 +27,7 @@ from assistbot.episode.builder import build_episode
 from assistbot.human.arm import ORIENT, rot_z
 from assistbot.robot.primitives.handing_over import OFFER_PHASE
 from assistbot.scenario import load_scenario
-from assistbot.world.world import HAND_POSTURES, HUMAN_HAND_JOINTS
+from assistbot.world import HAND_POSTURES, HUMAN_HAND_JOINTS
 
 #: the person's hand: the bodies whose geoms are placed
 HAND_BODIES = ("human_r_hand", "human_r_index", "human_r_fingers", "human_r_thumb")
