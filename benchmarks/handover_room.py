@@ -22,15 +22,13 @@ import itertools
 import mujoco
 import numpy as np
 
-from assistbot import catalogue
 from assistbot.episode.builder import build_episode
 from assistbot.human.arm import ORIENT, rot_z
+from assistbot.human.body import HAND_BODY
 from assistbot.robot.primitives.handing_over import OFFER_PHASE
 from assistbot.scenario import load_scenario
 from assistbot.world import HAND_POSTURES, HUMAN_HAND_JOINTS
 
-#: the person's hand: the bodies whose geoms are placed
-HAND_BODIES = ("human_r_hand", "human_r_index", "human_r_fingers", "human_r_thumb")
 #: m: the farthest the grasp site lies outside the glass's wall in a candidate pose
 SITE_ON_GLASS = 0.01
 #: (name, turn about the fingers' axis from thumb up toward palm down in degrees, closed posture, the most the
@@ -62,9 +60,12 @@ def _hand_in_posture(m, d, posture: str):
     for j, q in zip(HUMAN_HAND_JOINTS, HAND_POSTURES[posture]):
         d2.qpos[m.joint(j).qposadr[0]] = q
     mujoco.mj_kinematics(m, d2)
-    hb = m.body("human_r_hand").id
+    hb = m.body(HAND_BODY).id
     R, p = d2.xmat[hb].reshape(3, 3), d2.xpos[hb]
-    bodies = [b for b in range(m.nbody) if m.body(b).name.startswith(HAND_BODIES)]
+    bodies = {hb}
+    for b in range(hb + 1, m.nbody):   # the hand's subtree: MuJoCo numbers a body after its parent
+        if m.body_parentid[b] in bodies:
+            bodies.add(b)
     geoms = [(g, R.T @ (d2.geom_xpos[g] - p), R.T @ d2.geom_xmat[g].reshape(3, 3))
              for g in range(m.ngeom) if m.geom_bodyid[g] in bodies]
     return geoms, R.T @ (d2.site_xpos[m.site("human_r_grasp").id] - p)
@@ -82,7 +83,6 @@ def main() -> None:
     mujoco.mj_kinematics(m, scratch)
     shoulder = ep.partner.arm.shoulder_xy
     bearing = float(np.arctan2(glass[1] - shoulder[1], glass[0] - shoulder[0]))
-    radius, height = catalogue.radius("glass"), catalogue.height("glass")
 
     def clearance(geoms, R, p) -> float:
         for g, pr, Rr in geoms:
@@ -90,19 +90,19 @@ def main() -> None:
             scratch.geom_xmat[g] = (R @ Rr).ravel()
         return min(mujoco.mj_geomDistance(m, scratch, g, r, 0.05, None) for g, _, _ in geoms for r in robot)
 
-    opened, site = _hand_in_posture(m, d, "open")
+    hands = {posture: _hand_in_posture(m, d, posture) for posture in {"open", *(g[2] for g in GRIPS)}}
+    opened, site = hands["open"]
     print(f"the robot holds the full glass out at {np.round(glass, 3)} m; clearance (cm, + apart, - overlapping) "
           "of the best pose of each grip at each height of its grasp site above the glass's base:")
     print(f"{'grip':26s}" + "".join(f"{100 * s:6.0f}" for s in HEIGHTS))
     for name, turn, posture, turned in GRIPS:
-        closed, _ = _hand_in_posture(m, d, posture)
+        closed, _ = hands[posture]
         best = {}
         for s, yaw, along, off in itertools.product(HEIGHTS, YAWS[np.abs(YAWS) <= np.radians(turned) + 1e-9], ALONG, OFF):
             R = rot_z(bearing + yaw) @ ORIENT["sg"] @ rot_z(np.radians(turn))
-            target = glass + np.array([0.0, 0.0, s]) - along * -R[:, 2] - off * R[:, 1]
-            radial = float(np.hypot(*(target - glass)[:2])) - radius
-            axial = max(-(target - glass)[2], (target - glass)[2] - height, 0.0)
-            if max(radial, axial) > SITE_ON_GLASS:
+            # shifted back along the fingers (-R[:, 2] points along them) and off the glass (against the palm's normal)
+            target = glass + np.array([0.0, 0.0, s]) + along * R[:, 2] - off * R[:, 1]
+            if ep.world.surface_distance("glass", target) > SITE_ON_GLASS:
                 continue
             p = target - R @ site
             c = min(clearance(opened, R, p), clearance(closed, R, p))

@@ -325,8 +325,11 @@ class World:
 
     def grasp_distance(self, obj: str) -> float:
         """Distance (m) from the human's grasp site to the surface of `obj` (negative inside)."""
+        return self.surface_distance(obj, self.data.site_xpos[self.site_id["human_r_grasp"]])
+
+    def surface_distance(self, obj: str, p: np.ndarray) -> float:
+        """Distance (m) from the point ``p`` (world) to the surface of `obj` where it stands now (negative inside)."""
         d = self.data
-        p = d.site_xpos[self.site_id["human_r_grasp"]]
         b = self.body_id[obj]
         pos, R = d.xpos[b], d.xmat[b].reshape(3, 3)
         local = R.T @ (p - pos)
