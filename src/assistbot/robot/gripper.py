@@ -48,6 +48,15 @@ def hand_extent(model: mujoco.MjModel) -> tuple[float, float]:
     return above - tcp_z, below + tcp_z
 
 
+def middle_finger_reach(model: mujoco.MjModel) -> float:
+    """How far (m) above the TCP the middle finger (finger 3, level with it in a side grasp) reaches: its
+    link's radius, from the MJCF. A side grasp holds by that finger and the lower one while it stays on the
+    wall; the upper finger may then close over the top."""
+    f3 = model.body("robot_f3_prox").id
+    return float(model.body_pos[f3][2] - model.site_pos[model.site("robot_tcp").id][2]
+                 + model.geom_size[model.geom("robot_f3_prox").id][0])
+
+
 class Gripper:
     def __init__(self, model: mujoco.MjModel, data: mujoco.MjData) -> None:
         self.model, self.data = model, data
@@ -60,6 +69,7 @@ class Gripper:
         self._wrist = slice(int(ws.adr[0]), int(ws.adr[0]) + 3)
         self._wrist_site = int(ws.objid[0])     # the sensor's frame: where the arm's joints put it
         self.reach_above, self.reach_below = hand_extent(model)
+        self.middle_reach = middle_finger_reach(model)
 
     def open(self, amount: float = 1.0) -> None:
         """Open the fingers (amount 1: fully; 0.5: half way to closed)."""

@@ -22,7 +22,8 @@ The primitives (all friction grasps from the side, no welds):
                                   put the bottle back where it stood
   HoldBottleForStopper            grasp the closed bottle, hold it out upright at the middle line, wait
                                   for ``stopper_removed()``, put it back
-  HandOver, TurnAndHandOver       carry (turn first) and hold out in the hand-over zone; let go once the
+  HandOver, TurnAndHandOver       carry (HandOver: held by its upper part; TurnAndHandOver: turned first)
+                                  and hold out in the hand-over zone; let go once the
                                   wrist feels the person take it (`WaitForTake`); withdraw
   Receive                         grasp what the human holds out (target: the human's hand), wait until
                                   the human lets go, put it down in the RWS
@@ -43,7 +44,15 @@ Callbacks a caller passes as keywords (every primitive accepts them; see `Primit
 from assistbot.interfaces import Status
 from assistbot.robot.phases import Move, Phase
 from assistbot.robot.primitives.base import Primitive
-from assistbot.robot.primitives.geometry import GRASP_HEIGHT, LIFT, RADIUS, WALL_TOP, held_grasp_height, side_grasp_pose
+from assistbot.robot.primitives.geometry import (
+    GRASP_HEIGHT,
+    LIFT,
+    RADIUS,
+    WALL_TOP,
+    held_grasp_height,
+    offer_grasp_height,
+    side_grasp_pose,
+)
 from assistbot.robot.primitives.hand_over import HandOver
 from assistbot.robot.primitives.handing_over import OFFER_PHASE
 from assistbot.robot.primitives.hold_bottle_for_stopper import HoldBottleForStopper
@@ -66,6 +75,6 @@ __all__ = [
     "GRASP_HEIGHT", "HOLD_OUT_XY", "LIFT", "OFFER_PHASE", "RADIUS", "WALL_TOP",
     "HandOver", "HoldBottleForStopper", "Move", "Phase", "PlaceInRWS", "Pour", "Primitive", "Progress", "ReachAndGrasp",
     "ReachGraspLift", "Receive", "Request", "Retract", "Status", "TakeFromTable", "TurnAndHandOver", "TurnGlass",
-    "free_rws_spot", "held_grasp_height", "offer_point", "put_down_at", "reach_and_grasp_phases", "retract_phases",
+    "free_rws_spot", "held_grasp_height", "offer_grasp_height", "offer_point", "put_down_at", "reach_and_grasp_phases", "retract_phases",
     "side_grasp_pose",
 ]

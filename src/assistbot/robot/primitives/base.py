@@ -96,6 +96,8 @@ class Primitive:
         self.seen_state = seen_state or (lambda name: None)
         self.reaching_hand = reaching_hand or (lambda: None)
         self._offer: np.ndarray | None = None
+        #: m above the object's base at which the hand takes it from the table and holds it (None: GRASP_HEIGHT)
+        self.held_at: float | None = None
         self._failure: Progress | None = None    # a failure being ended safely (Phase.fallback)
         self.released: tuple[str, tuple[float, float]] | None = None  # the object let go of last, and where
         self.set_down: str | None = None         # the object this primitive set on the table, once the hand backed off it
@@ -111,6 +113,14 @@ class Primitive:
         self.progress = Progress(Status.RUNNING)
 
     # --- targets -------------------------------------------------------
+    @property
+    def grasp_height(self) -> float:
+        """Where (m above its base) the hand takes the target from the table and holds it while carrying it:
+        ``held_at`` when the primitive chose it, else the object's GRASP_HEIGHT."""
+        if self.held_at is not None:
+            return self.held_at
+        return GRASP_HEIGHT.get(self.object or "glass", GRASP_HEIGHT["held_out"])
+
     def xy(self) -> np.ndarray:
         """The target's table position: the target field's peak (fallback: the first perception)."""
         if self._held_xy is not None:
@@ -251,7 +261,7 @@ class Primitive:
         obj = self.object
         on_table, self.supported = self.supported, False
         if obj not in RADIUS or obj == "held_out" or (
-                not on_table and pose.translation()[2] > TABLE_Z + GRASP_HEIGHT[obj] + IN_THE_AIR_ABOVE):
+                not on_table and pose.translation()[2] > TABLE_Z + self.grasp_height + IN_THE_AIR_ABOVE):
             return      # let go of in the air: into the person's hand
         c = held_centre(pose, obj)
         self.released = (obj, (float(c[0]), float(c[1])))

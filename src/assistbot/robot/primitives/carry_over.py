@@ -12,7 +12,7 @@ from assistbot.interfaces import Status
 from assistbot.robot import poses
 from assistbot.robot.phases import Move, Phase
 from assistbot.robot.placement import segment_distance
-from assistbot.robot.primitives.geometry import GRASP_HEIGHT, RADIUS
+from assistbot.robot.primitives.geometry import RADIUS
 from assistbot.task import OBJECTS
 from assistbot.world.layout import TABLE_Z
 
@@ -45,7 +45,7 @@ class CarryOver(Phase):
         here = prim.robot.commanded_tcp_pose()
         goal = self.goal(prim)
         a, b = here.translation(), goal.translation()
-        below = GRASP_HEIGHT[obj]          # the carried object's base below the TCP
+        below = prim.grasp_height          # the carried object's base below the TCP
         need = -np.inf
         for other in OBJECTS:
             xy = prim.locate(other) if other != obj else None

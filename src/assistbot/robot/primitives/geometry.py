@@ -40,6 +40,18 @@ LIFT = 0.12
 #: the top of each object's side wall, where a side grasp's upper finger must stay below (m above the base):
 #: the glass's rim, the bottle's shoulder
 WALL_TOP = {"glass": catalogue.height("glass"), "bottle": BOTTLE_BODY_TOP}
+#: m between a finger's edge and the wall's top for it to press the wall, not the rim's edge
+ON_THE_WALL = 0.005
+
+
+def offer_grasp_height(obj: str, hand: "Gripper") -> float:
+    """Grasp height (m above the base) of an object the robot takes from the table to give to the person:
+    as high as the middle finger still closes on the wall (the upper finger may close over the top), so
+    that the hand holds it by its upper part and leaves the lower part to the hand that takes it, as a
+    person hands over a glass. Never lower than the table grasp (GRASP_HEIGHT)."""
+    if obj not in WALL_TOP:
+        return GRASP_HEIGHT.get(obj, GRASP_HEIGHT["held_out"])
+    return max(GRASP_HEIGHT[obj], WALL_TOP[obj] - hand.middle_reach - ON_THE_WALL)
 
 
 def closes_short(obj: str) -> float:
@@ -90,7 +102,7 @@ def side_grasp_pose(prim: Primitive, back: float = 0.0, up: float = 0.0, roll: f
         seen = prim.identify() if obj == "held_out" else obj
         base_z, h = prim.base_z(), held_grasp_height(seen or obj, prim.robot.gripper)
     else:
-        base_z, h = TABLE_Z, GRASP_HEIGHT.get(obj, GRASP_HEIGHT["held_out"])
+        base_z, h = TABLE_Z, prim.grasp_height
     c = np.array([x, y, base_z + (height if height is not None else h) + up])
     return grasp_pose_at(prim, c, obj, back, roll)
 

@@ -4,20 +4,22 @@ from __future__ import annotations
 
 from assistbot.robot.phases import Move
 from assistbot.robot.primitives.base import Primitive
-from assistbot.robot.primitives.geometry import LIFT, side_grasp_pose
+from assistbot.robot.primitives.geometry import LIFT, offer_grasp_height, side_grasp_pose
 from assistbot.robot.primitives.handing_over import give, hand_not_free, hold_out
 from assistbot.robot.primitives.reaching import reach_and_grasp_phases
 
 
 class HandOver(Primitive):
-    """Grasp the object, carry it upright (slowly: it may be a full glass) to the hand-over zone, hold it
-    out until the wrist feels the person take it (`WaitForTake`), let go, withdraw."""
+    """Grasp the object by its upper part (`offer_grasp_height`: the lower part is for the hand that takes
+    it), carry it upright (slowly: it may be a full glass) to the hand-over zone, hold it out until the wrist
+    feels the person take it (`WaitForTake`), let go, withdraw."""
 
     name = "hand_over"
 
     def __init__(self, robot, obj="glass", timeout: float = 20.0, **kw):
         super().__init__(robot, obj, **kw)
         self.timeout = timeout
+        self.held_at = offer_grasp_height(obj, robot.gripper)
 
     def phases(self):
         return reach_and_grasp_phases(self) + [

@@ -59,7 +59,7 @@ def hold_out(base: float | None = None, xy=None, duration: float = 2.5) -> list[
     def goal(p):
         if xy is None:
             return grasp_pose_at(p, offer_point(p), p.object)
-        c = np.array([xy[0], xy[1], TABLE_Z + base + GRASP_HEIGHT[p.object]])
+        c = np.array([xy[0], xy[1], TABLE_Z + base + p.grasp_height])
         return grasp_pose_at(p, c, p.object)
     return [CarryOver(goal), Move("hold out", goal, duration=duration, tolerance=0.03)]
 

@@ -11,7 +11,7 @@ from assistbot import catalogue
 from assistbot.robot import poses
 from assistbot.robot.controller import REACH, TCP_MIN_X
 from assistbot.robot.placement import put_down_spot
-from assistbot.robot.primitives.geometry import GRASP_HEIGHT, REACH_SLACK, held_centre
+from assistbot.robot.primitives.geometry import REACH_SLACK, held_centre
 from assistbot.robot.primitives.reaching import READY_POSE_POS, REST_POSE_POS
 from assistbot.task import OBJECTS
 from assistbot.world.layout import TABLE_Z
@@ -51,10 +51,10 @@ def offer_point(prim: "Primitive") -> np.ndarray:
         hand = prim.partner_hand()
         obj = prim.object
         if hand is None:
-            c = np.array([HOLD_OUT_XY[0], HOLD_OUT_XY[1], TABLE_Z + HOLD_OUT_BASE + GRASP_HEIGHT[obj]])
+            c = np.array([HOLD_OUT_XY[0], HOLD_OUT_XY[1], TABLE_Z + HOLD_OUT_BASE + prim.grasp_height])
         else:
             base = float(np.clip(float(hand[2]) - 0.5 * catalogue.height(obj), *OFFER_BASE))
-            c = np.array([float(hand[0]), float(hand[1]), TABLE_Z + base + GRASP_HEIGHT[obj]])
+            c = np.array([float(hand[0]), float(hand[1]), TABLE_Z + base + prim.grasp_height])
         prim._offer = within_offer_limits(prim, c)
     return prim._offer
 
@@ -85,7 +85,7 @@ def meet_goal(prim: "Primitive", hand) -> mink.SE3 | None:
     (MEET_MAX) or the arm cannot bring the object nearer."""
     tcp = prim.robot.tcp_pose()
     obj = prim.object
-    up = np.array([0.0, 0.0, GRASP_HEIGHT[obj] - 0.5 * catalogue.height(obj)])   # the middle to the grasp height
+    up = np.array([0.0, 0.0, prim.grasp_height - 0.5 * catalogue.height(obj)])   # the middle to the grasp height
     centre = held_centre(tcp, obj)
     middle = centre - up
     at = np.asarray(hand, float) + np.array([0.0, 0.0, TABLE_Z])
@@ -106,5 +106,5 @@ def free_rws_spot(p: "Primitive") -> np.ndarray:
     other objects seen standing in the RWS (``p.locate``)."""
     standing = [np.asarray(xy, float) for xy in (p.locate(n) for n in OBJECTS if n != p.object)
                 if xy is not None and xy[0] > 0.0]
-    return put_down_spot(p.robot.shoulder, REACH, HOLD_OUT_XY, standing, GRASP_HEIGHT.get(p.object, GRASP_HEIGHT["held_out"]),
+    return put_down_spot(p.robot.shoulder, REACH, HOLD_OUT_XY, standing, p.grasp_height,
                          ways=(TO_REST,))

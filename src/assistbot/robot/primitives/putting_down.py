@@ -8,7 +8,7 @@ import numpy as np
 
 from assistbot.robot.phases import BackOff, FreeIdleFingers, LowerUntilSupported, Move, Open, Phase, RiseClear, SetCarrying
 from assistbot.robot.primitives.carry_over import CarryOver
-from assistbot.robot.primitives.geometry import GRASP_HEIGHT, LIFT, grasp_pose_at, half_turn
+from assistbot.robot.primitives.geometry import LIFT, grasp_pose_at, half_turn
 from assistbot.robot.primitives.places import free_rws_spot
 from assistbot.robot.primitives.reaching import retract_phases
 from assistbot.world.layout import TABLE_Z
@@ -28,7 +28,7 @@ def put_down_at(xy_of: Callable[[Primitive], np.ndarray], lift: float = LIFT) ->
 
     def at(p, up):
         x, y = xy_of(p)
-        c = np.array([x, y, TABLE_Z + GRASP_HEIGHT[p.object] + up])
+        c = np.array([x, y, TABLE_Z + p.grasp_height + up])
         return grasp_pose_at(p, c, p.object, roll=half_turn(p))
     return [
         FreeIdleFingers(),

@@ -56,7 +56,7 @@ def above_pre_grasp(p: Primitive, height: float | None = None, held_up: bool = F
     fingers sweep round at that height (a bottle's neck stands higher than the hand's usual approach)."""
     up = ABOVE_GRASP
     if not held_up and p.object in GRASP_HEIGHT and p.object != "held_out":
-        h = height if height is not None else GRASP_HEIGHT[p.object]
+        h = height if height is not None else p.grasp_height
         up = max(up, catalogue.height(p.object) + p.robot.gripper.reach_below + TOP_CLEARANCE - h)
     return side_grasp_pose(p, back=PRE_GRASP_BACK, up=up, height=height, held_up=held_up)
 
