@@ -271,17 +271,19 @@ class HumanArm:
         q[2] = max(q[2], MIN_Z)
         return q
 
-    def move_to(self, p, R=None, t: float = 0.0, duration: float | None = None, speed: float | None = None) -> float:
+    def move_to(self, p, R=None, t: float = 0.0, duration: float | None = None, speed: float | None = None,
+                lift: bool = True) -> float:
         """Start a minimum-jerk motion of the grasp site to position p (and rotation R).
 
-        Starts from the present commanded pose (smooth re-targeting).  Returns the duration (s)."""
+        Starts from the present commanded pose (smooth re-targeting); a hand near the table first comes up
+        (unless not ``lift``: it goes straight).  Returns the duration (s)."""
         p1 = self.clamp_target(p, t)
         p0, R0 = self.fk(self.q)
         R1 = R0 if R is None else np.asarray(R, float)
         v = self.speed if speed is None else speed
         segs = []
         t0 = float(t)
-        if p0[2] < LIFT_BELOW_Z and float(np.linalg.norm(p1[:2] - p0[:2])) > 0.05:
+        if lift and p0[2] < LIFT_BELOW_Z and float(np.linalg.norm(p1[:2] - p0[:2])) > 0.05:
             # a hand resting near the table first comes up, so fingers do not drag on the table
             up = p0 + np.array([0.0, 0.0, LIFT_BELOW_Z + 0.03 - p0[2]])
             d_up = max(0.3, float(up[2] - p0[2]) / v)

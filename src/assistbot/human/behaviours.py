@@ -18,6 +18,7 @@ import numpy as np
 from assistbot import catalogue
 from assistbot.human.arm import grip_orientation, rot_y, rot_z
 from assistbot.human.perception import RobotView
+from assistbot.human.room import hand_room
 from assistbot.interfaces import Status
 from assistbot.task import DRINK_FRACTION
 from assistbot.world import layout
@@ -73,6 +74,17 @@ OWN_SIDE_SPOTS = ((-0.24, -0.20), (-0.24, -0.06), (-0.24, 0.08), (-0.24, 0.22))
 OWN_SIDE_CLEAR = 0.12
 #: grasp-site height above the object's base (m), per object and grip
 GRASP_HEIGHT = {("bottle", "ag"): 0.17, ("bottle", "sg"): 0.085, ("glass", "ag"): 0.085, ("glass", "sg"): 0.055}
+#: m: taking from the robot's hand, the gap the person's grip keeps from it, as the eyes judge it; and the steps
+#: by which the side grip goes lower down the object to find that room
+CLEAR_OF_HAND = 0.015
+TAKE_HEIGHT_STEP = 0.01
+#: m: a grasp comes in from this far above the object or back along the fingers; taking from the robot's
+#: hand, from farther: the open fingers reach 10 cm beyond the grasp site and the hand turns into the grip
+#: on the way, so the way in must start clear of the fingers round the object
+APPROACH_BACK = 0.08
+TAKE_APPROACH_BACK = 0.14
+#: m/s: the most a hand closing in on another's hand moves (its joints keep to the straight way in)
+CAREFUL_SPEED = 0.08
 POINT_X_MAX = -0.10               # world x, the pointing hand stays behind this
 POINT_TOLERANCE = 0.35            # rad, finger direction vs the direction to the object
 TURN_LIFT = 0.04                  # m, the inverted glass is lifted this much before the half turn
@@ -149,7 +161,7 @@ def _wait_until(c, cond: Callable[[], bool], timeout: float) -> Generator[None, 
 
 
 def _move(c, p, R=None, speed: float | None = None, tol: float = MOVE_TOL,
-          stop: Callable[[], bool] | None = None) -> Generator[None, None, bool]:
+          stop: Callable[[], bool] | None = None, lift: bool = True) -> Generator[None, None, bool]:
     """Reach to p (with rotation R); True when the hand got there (or `stop()` became true on the way:
     the hand then stays where it is).  An object in the hand is carried over, not through, the objects
     standing near the way (`_carry_height`): the hand first rises, crosses, then comes down. A reach the
@@ -162,7 +174,7 @@ def _move(c, p, R=None, speed: float | None = None, tol: float = MOVE_TOL,
         if c.arm.rehearse(afresh, c.t) == len(afresh):
             moves = afresh
     for q, R_q, speed_q, tol_q in moves:
-        if not (yield from _move_straight(c, q, R_q, speed_q, tol_q, stop)):
+        if not (yield from _move_straight(c, q, R_q, speed_q, tol_q, stop, lift)):
             return False
     return True
 
@@ -183,10 +195,10 @@ def _carry_path(c, p) -> list[np.ndarray]:
 
 
 def _move_straight(c, p, R=None, speed: float | None = None, tol: float = MOVE_TOL,
-                   stop: Callable[[], bool] | None = None) -> Generator[None, None, bool]:
+                   stop: Callable[[], bool] | None = None, lift: bool = True) -> Generator[None, None, bool]:
     if c.profile.hesitation > 0:
         yield from _wait(c, c.profile.hesitation)
-    dur = c.arm.move_to(p, R, t=c.t, speed=speed)
+    dur = c.arm.move_to(p, R, t=c.t, speed=speed, lift=lift)
     t_end = c.t + dur + 1.5
     while not c.arm.arrived(c.t, tol):
         if stop is not None and stop():
@@ -227,6 +239,15 @@ def _to_rest(c) -> Generator[None, None, bool]:
     return (yield from _move(c, c.arm.own_point(REST), c.arm.R_rest))
 
 
+def _withdraw(c, rest: bool = True) -> Generator[None, None, bool]:
+    """Take the open hand away from what is in another's hand the way it came in, back along its fingers
+    (APPROACH_BACK) and carefully, before it goes to rest (``rest``) or on to another reach: going straight
+    on, it would sweep past the other's fingers round the object."""
+    hand, R = c.arm.hand_pose()
+    ok = yield from _move(c, hand + APPROACH_BACK * R[:, 2], R, speed=min(c.arm.speed, CAREFUL_SPEED), lift=False)
+    return (yield from _to_rest(c)) if rest else ok
+
+
 def _close(c, posture: str, obj: str) -> Generator[None, None, bool]:
     c.arm.set_posture(posture, squeeze=True)
     ok = yield from _wait_until(c, c.world.hand_closed, 3.0)
@@ -240,26 +261,63 @@ def _center_base(c, obj: str) -> np.ndarray:
     return standing_end(c.world, obj)
 
 
-def grasp_point(c, obj: str, grip: str) -> np.ndarray:
+def grasp_point(c, obj: str, grip: str, height: float | None = None) -> np.ndarray:
+    """Where the grasp site goes for ``grip`` on ``obj``: ``height`` (default GRASP_HEIGHT) above the end it stands on."""
     p, a = _pos(c, obj), _axis(c, obj)
-    return p + GRASP_HEIGHT[(obj, grip)] * a if a[2] >= 0 else p + (catalogue.height("glass") - GRASP_HEIGHT[(obj, grip)]) * a
+    h = GRASP_HEIGHT[(obj, grip)] if height is None else height
+    return p + h * a if a[2] >= 0 else p + (catalogue.height("glass") - h) * a
 
 
-# ---------------------------------------------------------------------------- behaviours
-def grasp(c, object: str, grip: str = "ag", lift: bool = True, hold_out: bool = False) -> Gen:
-    """Reach and grasp `object` with an above (ag) or side (sg) grip, then lift it a little."""
+def grip_beside_the_robots_hand(c, obj: str) -> tuple[str, float]:
+    """The grip and grasp-site height at which to take ``obj`` from the robot's hand, as the eyes judge the room
+    it leaves (`room.HandRoom.clearance`) and the arm its own reach (`HumanArm.rehearse`): of her side grip at
+    its usual height, lower down the object (TAKE_HEIGHT_STEP at a time, down to the end it stands on) and her
+    grip from above, the first that keeps CLEAR_OF_HAND from the robot's hand, else the one that keeps farthest
+    from it, that her arm can reach; none reachable, her usual side grip (she reaches as far as she goes)."""
+    room, d = hand_room(c.world), c.world.data
+    sg = GRASP_HEIGHT[(obj, "sg")]
+    grips = [("sg", float(h)) for h in np.arange(sg, -1e-9, -TAKE_HEIGHT_STEP)] + [("ag", GRASP_HEIGHT[(obj, "ag")])]
+    poses, gaps = [], []
+    for grip, h in grips:
+        target = grasp_point(c, obj, grip, h)
+        R = grip_orientation(grip, target, c.arm.shoulder_xy)
+        poses.append((target, R))
+        gaps.append(room.clearance(d, grip, target, R))
+    clear = [k for k, gap in enumerate(gaps) if gap >= CLEAR_OF_HAND]
+    tight = sorted((k for k, gap in enumerate(gaps) if gap < CLEAR_OF_HAND), key=lambda k: -gaps[k])
+    careful = min(c.arm.speed, CAREFUL_SPEED)
+    for k in clear + tight:
+        (target, R), grip = poses[k], grips[k][0]
+        moves = [(_approach_point(target, R, grip, TAKE_APPROACH_BACK), R, None, MOVE_TOL), (target, R, careful, 0.02)]
+        if c.arm.rehearse(moves, c.t) == len(moves):
+            return grips[k]
+    return grips[0]
+
+
+def _approach_point(target: np.ndarray, R: np.ndarray, grip: str, back: float) -> np.ndarray:
+    """Where a grasp comes in from: ``back`` above the grasp site (from above), or back along the fingers."""
+    return target + (np.array([0.0, 0.0, back]) if grip == "ag" else back * R[:, 2])
+
+
+def grasp(c, object: str, grip: str = "ag", lift: bool = True, hold_out: bool = False,
+          height: float | None = None, back: float = APPROACH_BACK, straight_in: bool = False) -> Gen:
+    """Reach and grasp `object` with an above (ag) or side (sg) grip, its grasp site ``height`` above the end
+    the object stands on (default GRASP_HEIGHT), coming in from ``back`` above it or back along the fingers
+    (``straight_in``: slowly, CAREFUL_SPEED at most, along a straight line, even low over the table, as into
+    another's hand), then lift it a little."""
     if c.world.human_holding() is not None:
         return False, f"the hand already holds the {c.world.human_holding()}"
-    target = grasp_point(c, object, grip)
+    target = grasp_point(c, object, grip, height)
     R = grip_orientation(grip, target, c.arm.shoulder_xy)
-    pre = target + (np.array([0, 0, 0.08]) if grip == "ag" else 0.08 * R[:, 2])  # above / back along the fingers
+    pre = _approach_point(target, R, grip, back)
     c.arm.set_posture("open")
     if not (yield from _move(c, pre, R)):
         return False, "could not reach the approach pose"
-    if np.linalg.norm(grasp_point(c, object, grip) - target) > REAIM:
+    if np.linalg.norm(grasp_point(c, object, grip, height) - target) > REAIM:
         # it has moved meanwhile (the robot holding it out brings it nearer): the eyes follow it
-        target = grasp_point(c, object, grip)
-    if not (yield from _move(c, target, R, tol=0.02)):
+        target = grasp_point(c, object, grip, height)
+    speed = min(c.arm.speed, CAREFUL_SPEED) if straight_in else None
+    if not (yield from _move(c, target, R, speed=speed, tol=0.02, lift=not straight_in)):
         return False, f"could not reach the {object}"
     yield from _wait(c, 0.15)
     if not (yield from _close(c, grip, object)):
@@ -454,7 +512,7 @@ def hand_to_robot(c, object: str, grip: str | None = None, timeout: float = 40.0
     yield from _wait(c, c.profile.reaction_delay)
     c.arm.set_posture("open")
     yield from _wait(c, 0.5)
-    yield from _to_rest(c)
+    yield from _withdraw(c)
     ok = c.world.human_holding() is None and c.view.holds == object
     return ok, f"{object} handed over"
 
@@ -495,20 +553,28 @@ def _brought_nearer(c, object: str, offered_at: np.ndarray) -> Generator[None, N
 
 
 def take_from_robot(c, object: str | None = None, timeout: float = 20.0) -> Gen:
-    """Take the object the robot holds out once it has arrived: reach it with a side grip, close, wait for
-    the robot to let go. A grip that gives way before the robot has let go (it pulled or moved on) is
-    taken again while the robot still holds the object out."""
+    """Take the object the robot holds out once it has arrived: reach it where the robot's hand leaves room
+    for the grip (`grip_beside_the_robots_hand`), close, wait for the robot to let go. A grip that gives way
+    before the robot has let go (it pulled or moved on) is taken again while the robot still holds it out."""
+    if c.arm.posture == "request":
+        # the hand held out asking for it (the request cut short) would be where the robot brings the object:
+        # out of its way first
+        yield from _withdraw(c)
     if not (yield from _offered_still(c, object, timeout)):
         return False, "the robot offers nothing"
     obj = c.view.offers
     short = 0
     for _ in range(TAKE_TRIES):
         offered_at = np.array(c.view.hand_pos, float)
-        ok, why = yield from grasp(c, obj, "sg", lift=False)
+        grip, height = grip_beside_the_robots_hand(c, obj)
+        ok, why = yield from grasp(c, obj, grip, lift=False, height=height, back=TAKE_APPROACH_BACK,
+                                        straight_in=True)
         while not ok and why.startswith(SHORT_OF) and short < SHORT_TRIES and (yield from _brought_nearer(c, obj, offered_at)):
             short += 1
             offered_at = np.array(c.view.hand_pos, float)
-            ok, why = yield from grasp(c, obj, "sg", lift=False)
+            grip, height = grip_beside_the_robots_hand(c, obj)
+            ok, why = yield from grasp(c, obj, grip, lift=False, height=height, back=TAKE_APPROACH_BACK,
+                                        straight_in=True)
         if not ok:
             return False, why
         # the robot lets go, or the grip gives way (felt: the hand holds nothing any more)
