@@ -19,15 +19,13 @@ from __future__ import annotations
 
 import itertools
 
-import mujoco
 import numpy as np
 
 from assistbot.episode.builder import build_episode
 from assistbot.human.arm import ORIENT, rot_z
-from assistbot.human.body import HAND_BODY
+from assistbot.human.room import hand_room
 from assistbot.robot.primitives.handing_over import OFFER_PHASE
 from assistbot.scenario import load_scenario
-from assistbot.world import HAND_POSTURES, HUMAN_HAND_JOINTS
 
 #: m: the farthest the grasp site lies outside the glass's wall in a candidate pose
 SITE_ON_GLASS = 0.01
@@ -36,7 +34,7 @@ SITE_ON_GLASS = 0.01
 GRIPS = (("side grip, thumb up", 0, "sg", 90), ("side grip, thumb up, +-15", 0, "sg", 15),
          ("side grip turned 30 deg", 30, "sg", 90), ("side grip turned 60 deg", 60, "sg", 90),
          ("from above, palm down", 90, "ag", 90), ("from above, +-15", 90, "ag", 15))
-HEIGHTS = np.arange(0.02, 0.101, 0.01)
+HEIGHTS = np.arange(0.0, 0.101, 0.01)
 YAWS = np.radians(np.arange(-90, 91, 15))
 ALONG = np.arange(-0.04, 0.021, 0.02)
 OFF = np.arange(-0.01, 0.031, 0.01)
@@ -53,50 +51,19 @@ def _held_out(ep) -> None:
     raise SystemExit("the episode ended before the robot held the glass out")
 
 
-def _hand_in_posture(m, d, posture: str):
-    """The hand's geoms relative to the hand body, the fingers in ``posture``; and the grasp site's."""
-    d2 = mujoco.MjData(m)
-    d2.qpos[:] = d.qpos
-    for j, q in zip(HUMAN_HAND_JOINTS, HAND_POSTURES[posture]):
-        d2.qpos[m.joint(j).qposadr[0]] = q
-    mujoco.mj_kinematics(m, d2)
-    hb = m.body(HAND_BODY).id
-    R, p = d2.xmat[hb].reshape(3, 3), d2.xpos[hb]
-    bodies = {hb}
-    for b in range(hb + 1, m.nbody):   # the hand's subtree: MuJoCo numbers a body after its parent
-        if m.body_parentid[b] in bodies:
-            bodies.add(b)
-    geoms = [(g, R.T @ (d2.geom_xpos[g] - p), R.T @ d2.geom_xmat[g].reshape(3, 3))
-             for g in range(m.ngeom) if m.geom_bodyid[g] in bodies]
-    return geoms, R.T @ (d2.site_xpos[m.site("human_r_grasp").id] - p)
-
-
 def main() -> None:
     ep = build_episode(load_scenario("fig4-fill-and-hand-over"), perception="oracle")
-    m, d = ep.world.model, ep.world.data
+    d = ep.world.data
     _held_out(ep)
     glass = d.xpos[ep.world.body_id["glass"]].copy()
-    robot = [g for g in range(m.ngeom) if m.body(m.geom_bodyid[g]).name.startswith("robot_")
-             and np.linalg.norm(d.geom_xpos[g] - glass) < 0.25]
-    scratch = mujoco.MjData(m)
-    scratch.qpos[:] = d.qpos
-    mujoco.mj_kinematics(m, scratch)
+    room = hand_room(ep.world)
     shoulder = ep.partner.arm.shoulder_xy
     bearing = float(np.arctan2(glass[1] - shoulder[1], glass[0] - shoulder[0]))
 
-    def clearance(geoms, R, p) -> float:
-        for g, pr, Rr in geoms:
-            scratch.geom_xpos[g] = p + R @ pr
-            scratch.geom_xmat[g] = (R @ Rr).ravel()
-        return min(mujoco.mj_geomDistance(m, scratch, g, r, 0.05, None) for g, _, _ in geoms for r in robot)
-
-    hands = {posture: _hand_in_posture(m, d, posture) for posture in {"open", *(g[2] for g in GRIPS)}}
-    opened, site = hands["open"]
     print(f"the robot holds the full glass out at {np.round(glass, 3)} m; clearance (cm, + apart, - overlapping) "
           "of the best pose of each grip at each height of its grasp site above the glass's base:")
     print(f"{'grip':26s}" + "".join(f"{100 * s:6.0f}" for s in HEIGHTS))
     for name, turn, posture, turned in GRIPS:
-        closed, _ = hands[posture]
         best = {}
         for s, yaw, along, off in itertools.product(HEIGHTS, YAWS[np.abs(YAWS) <= np.radians(turned) + 1e-9], ALONG, OFF):
             R = rot_z(bearing + yaw) @ ORIENT["sg"] @ rot_z(np.radians(turn))
@@ -104,8 +71,7 @@ def main() -> None:
             target = glass + np.array([0.0, 0.0, s]) + along * R[:, 2] - off * R[:, 1]
             if ep.world.surface_distance("glass", target) > SITE_ON_GLASS:
                 continue
-            p = target - R @ site
-            c = min(clearance(opened, R, p), clearance(closed, R, p))
+            c = min(room.clearance(d, "open", target, R), room.clearance(d, posture, target, R))
             best[round(s, 2)] = max(best.get(round(s, 2), -1.0), c)
         print(f"{name:26s}" + "".join(f"{100 * best.get(round(s, 2), np.nan):+6.1f}" for s in HEIGHTS))
 

@@ -18,6 +18,7 @@ from pathlib import Path
 import pytest
 
 from assistbot.episode import run_scenario
+from assistbot.episode.touch import TouchMonitor
 from assistbot.scenario import load_scenario
 
 pytestmark = pytest.mark.slow
@@ -36,8 +37,16 @@ def in_order(seq: list[str], wanted: list[str]) -> bool:
     return all(any(x == w for x in it) for w in wanted)
 
 
+def check_hands_kept_apart(r) -> None:
+    """No robot geom went more than 1 cm into the person's (her hand taking the glass from the robot's
+    included): the hands meet where there is room for both."""
+    assert r.touched_person["depth"] <= TouchMonitor.DEEP, r.touched_person
+
+
 def check_glass_handed_over(r) -> None:
-    """The robot let go of the glass on the person's side only once the person held it, the first time."""
+    """The robot let go of the glass on the person's side only once the person held it, the first time;
+    the hands kept apart."""
+    check_hands_kept_apart(r)
     ev = [(e["event"], e.get("object")) for e in r.world_events]
     crossed = ev.index(("crossed_middle_line", "glass"), max(i for i, e in enumerate(ev) if e == ("robot_grasped", "glass")))
     assert ev[crossed + 1:crossed + 3] == [("human_grasped", "glass"), ("robot_released", "glass")], ev
@@ -117,6 +126,7 @@ def test_every_other_shipped_scenario_ends_with_the_drink_with_vision(name):
     assert r.success, (r.end_reason, decisions, r.actions)
     assert r.min_distance_human >= 0.05
     assert r.spilled_fraction < 0.10
+    check_hands_kept_apart(r)
     if name in FILLS_FIRST:
         assert in_order(decisions, FILLS_FIRST[name]) and "Hand-over-bottle" not in decisions, decisions
 
