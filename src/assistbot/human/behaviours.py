@@ -65,6 +65,7 @@ UNDER_ROBOT_CLEARANCE = 0.08
 REST = np.array([-0.34, -0.17, 0.86])
 LIFT = 0.07                       # m lifted after a grasp
 MOVE_TOL = 0.03                   # m: a reach has arrived when the hand is this near its goal
+AT_GRASP_TOL = 0.02               # m: ... and the hand closing in on a grasp, this near the grasp
 #: m that an object carried in the hand keeps from the other objects standing on the table (above, around)
 CARRY_CLEARANCE = 0.03
 #: an object held beyond this table x (toward the robot) is put down on the person's own side instead
@@ -288,7 +289,7 @@ def grip_beside_the_robots_hand(c, obj: str) -> tuple[str, float]:
     careful = min(c.arm.speed, CAREFUL_SPEED)
     for k in clear + tight:
         (target, R), grip = poses[k], grips[k][0]
-        moves = [(_approach_point(target, R, grip, TAKE_APPROACH_BACK), R, None, MOVE_TOL), (target, R, careful, 0.02)]
+        moves = [(_approach_point(target, R, grip, TAKE_APPROACH_BACK), R, None, MOVE_TOL), (target, R, careful, AT_GRASP_TOL)]
         if c.arm.rehearse(moves, c.t) == len(moves):
             return grips[k]
     return grips[0]
@@ -299,6 +300,7 @@ def _approach_point(target: np.ndarray, R: np.ndarray, grip: str, back: float) -
     return target + (np.array([0.0, 0.0, back]) if grip == "ag" else back * R[:, 2])
 
 
+# ---------------------------------------------------------------------------- behaviours
 def grasp(c, object: str, grip: str = "ag", lift: bool = True, hold_out: bool = False,
           height: float | None = None, back: float = APPROACH_BACK, straight_in: bool = False) -> Gen:
     """Reach and grasp `object` with an above (ag) or side (sg) grip, its grasp site ``height`` above the end
@@ -317,7 +319,7 @@ def grasp(c, object: str, grip: str = "ag", lift: bool = True, hold_out: bool = 
         # it has moved meanwhile (the robot holding it out brings it nearer): the eyes follow it
         target = grasp_point(c, object, grip, height)
     speed = min(c.arm.speed, CAREFUL_SPEED) if straight_in else None
-    if not (yield from _move(c, target, R, speed=speed, tol=0.02, lift=not straight_in)):
+    if not (yield from _move(c, target, R, speed=speed, tol=AT_GRASP_TOL, lift=not straight_in)):
         return False, f"could not reach the {object}"
     yield from _wait(c, 0.15)
     if not (yield from _close(c, grip, object)):
@@ -567,14 +569,13 @@ def take_from_robot(c, object: str | None = None, timeout: float = 20.0) -> Gen:
     for _ in range(TAKE_TRIES):
         offered_at = np.array(c.view.hand_pos, float)
         grip, height = grip_beside_the_robots_hand(c, obj)
-        ok, why = yield from grasp(c, obj, grip, lift=False, height=height, back=TAKE_APPROACH_BACK,
-                                        straight_in=True)
+        ok, why = yield from grasp(c, obj, grip, lift=False, height=height, back=TAKE_APPROACH_BACK, straight_in=True)
         while not ok and why.startswith(SHORT_OF) and short < SHORT_TRIES and (yield from _brought_nearer(c, obj, offered_at)):
             short += 1
             offered_at = np.array(c.view.hand_pos, float)
             grip, height = grip_beside_the_robots_hand(c, obj)
             ok, why = yield from grasp(c, obj, grip, lift=False, height=height, back=TAKE_APPROACH_BACK,
-                                        straight_in=True)
+                                       straight_in=True)
         if not ok:
             return False, why
         # the robot lets go, or the grip gives way (felt: the hand holds nothing any more)
