@@ -8,7 +8,6 @@ from __future__ import annotations
 import pytest
 
 from assistbot.episode.touch import TouchMonitor
-from assistbot.human.behaviours import grip_beside_the_robots_hand
 from assistbot.human.controller import HumanController
 from assistbot.human.script import parse_human
 from assistbot.robot import primitives as P
@@ -30,10 +29,13 @@ def _hand_over_full_glass():
     def watch(t):
         human.tick(t)
         touch.update(t, 0.0)
+        base = w.data.xpos[w.body_id["glass"]][2]
         if prim.progress.phase == P.OFFER_PHASE and "offered" not in seen:
-            base = w.data.xpos[w.body_id["glass"]][2]
             seen["offered"] = float(robot.tcp_pose().translation()[2] - base)
-            seen["grip"] = grip_beside_the_robots_hand(human, "glass")
+        if w.human_holding() == "glass" and "taken_at" not in seen:
+            # where her grip closed: her grasp site's height above the glass's base, and her palm's normal
+            seen["taken_at"] = float(w.site_pos("human_r_grasp")[2] - base)
+            seen["palm_normal"] = w.data.xmat[w.body_id["human_r_hand"]].reshape(3, 3)[:, 1].copy()
 
     pr, _ = run(w, prim, body_xy(w, "glass"), seconds=45.0, each_tick=watch)
     return w, human, pr, touch.worst, seen
@@ -60,5 +62,5 @@ def test_she_takes_it_below_the_robots_hand_and_the_hands_stay_apart(handed):
     # hers alone, nothing spilled (she may already be bringing it to her mouth)
     assert st.robot_holds is None and st.human_holds == "glass" and st.liquid.spilled == 0, st.summary()
     assert worst.depth <= TouchMonitor.DEEP, worst
-    grip, height = seen["grip"]
-    assert grip == "sg" and height < 0.03, seen        # her side grip, low on the glass
+    # her side grip (the palm's normal level, not down as from above), low on the glass, under the robot's hand
+    assert abs(seen["palm_normal"][2]) < 0.5 and seen["taken_at"] < 0.03, seen
