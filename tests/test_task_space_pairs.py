@@ -11,6 +11,7 @@ import pytest
 import yaml
 
 from assistbot.episode import run_scenario
+from assistbot.episode.touch import TouchMonitor
 from assistbot.scenario import parse_scenario
 
 pytestmark = pytest.mark.slow
@@ -39,3 +40,14 @@ def test_the_pair_drinks(profile, bottle, glass):
     assert r.success and r.end_reason == "drink", (r.end_reason, [a for _, a in r.decisions])
     assert r.spilled_fraction < 0.1
 
+
+
+def test_a_slow_person_pulls_the_stopper_from_the_bottle_the_robot_holds_with_the_hands_apart():
+    """A slow person asks for the bottle; the robot says it will hold it for her to open, which cuts her request
+    short. Her hand, still held out, is taken out of the robot's way before she waits for it (else the robot
+    brings the bottle into it: 1.7 cm deep), then pulls the stopper while the robot holds the bottle."""
+    r = _episode("slow", "RWS:closed", "RWS:empty")
+    assert r.success and r.end_reason == "drink", (r.end_reason, [a for _, a in r.decisions])
+    pulled = [e for e in r.world_events if e["event"] == "stopper_removed"]
+    assert pulled and pulled[0]["robot_holds"] == "bottle" and pulled[0]["human_holds"] == "stopper", pulled
+    assert r.touched_person["depth"] <= TouchMonitor.DEEP, r.touched_person

@@ -249,6 +249,13 @@ def _withdraw(c, rest: bool = True) -> Generator[None, None, bool]:
     return (yield from _to_rest(c)) if rest else ok
 
 
+def _out_of_the_robots_way(c) -> Generator[None, None, None]:
+    """A hand still held out asking (a request cut short by what the robot said) is where the robot brings
+    what it holds: before waiting for it, the hand is taken out of its way (`_withdraw`)."""
+    if c.arm.posture == "request":
+        yield from _withdraw(c)
+
+
 def _close(c, posture: str, obj: str) -> Generator[None, None, bool]:
     c.arm.set_posture(posture, squeeze=True)
     ok = yield from _wait_until(c, c.world.hand_closed, 3.0)
@@ -558,10 +565,7 @@ def take_from_robot(c, object: str | None = None, timeout: float = 20.0) -> Gen:
     """Take the object the robot holds out once it has arrived: reach it where the robot's hand leaves room
     for the grip (`grip_beside_the_robots_hand`), close, wait for the robot to let go. A grip that gives way
     before the robot has let go (it pulled or moved on) is taken again while the robot still holds it out."""
-    if c.arm.posture == "request":
-        # the hand held out asking for it (the request cut short) would be where the robot brings the object:
-        # out of its way first
-        yield from _withdraw(c)
+    yield from _out_of_the_robots_way(c)
     if not (yield from _offered_still(c, object, timeout)):
         return False, "the robot offers nothing"
     obj = c.view.offers
@@ -639,6 +643,7 @@ def pull_stopper(c, timeout: float = 3.0, wait_for_robot: float = 0.0) -> Gen:
     the bottle (a person invited to pull the stopper waits for the robot to hold it out).
     """
     w = c.world
+    yield from _out_of_the_robots_way(c)
     if wait_for_robot > 0:
         # held out toward the person, and still for a moment: then reach for the stopper
         if not (yield from _wait_until(c, lambda: c.view.offers == "bottle", wait_for_robot)):
