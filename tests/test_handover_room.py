@@ -1,7 +1,11 @@
-"""Each hand on the part of the glass the other leaves free, in the physics: the robot hands the person a full
-glass it holds by its upper part (`offer_grasp_height`), she takes it below the robot's hand where her eyes
-see room for her grip (`grip_beside_the_robots_hand`), and no robot geom goes more than 1 cm into hers on
-the way (the touch measure of every episode summary). Perception is the ground truth here (`body_xy`)."""
+"""Each hand on the part of the glass the other leaves free, in the physics, and no robot geom more than 1 cm
+into the person's on the way (the touch measure of every episode summary). Perception is the ground truth
+here (`body_xy`, `body_lift`).
+
+- The robot hands the person a full glass it holds by its upper part (`offer_grasp_height`); she takes it
+  below the robot's hand where her eyes see room for her grip (`grip_beside_the_robots_hand`).
+- She hands the robot the glass she holds from above; once it holds it, her hand rises off the glass
+  before it opens (`behaviours._let_go`)."""
 
 from __future__ import annotations
 
@@ -12,7 +16,7 @@ from assistbot.human.controller import HumanController
 from assistbot.human.script import parse_human
 from assistbot.robot import primitives as P
 from assistbot.robot.controller import RobotController
-from assistbot.robot.sim import body_xy, run
+from assistbot.robot.sim import CONTROL_DT, body_lift, body_xy, run
 from assistbot.world import Arrangement, build_world
 
 
@@ -64,3 +68,32 @@ def test_she_takes_it_below_the_robots_hand_and_the_hands_stay_apart(handed):
     assert worst.depth <= TouchMonitor.DEEP, worst
     # her side grip (the palm's normal level, not down as from above), low on the glass, under the robot's hand
     assert abs(seen["palm_normal"][2]) < 0.5 and seen["taken_at"] < 0.03, seen
+
+
+def test_she_lets_go_of_the_glass_she_held_from_above_without_sweeping_into_the_robots_hand():
+    """Her grip from above hangs her fingers down the glass's side toward the robot; opened there, they swept
+    2.5 cm into its palm here (2.2 cm in the task-space matrix). She lets go by rising off the glass first, and
+    it ends in the robot's hand."""
+    w = build_world(Arrangement.from_options("RWS:closed@0.2,0.2", "HWS:empty@-0.20,0.05"), seed=0)
+    robot = RobotController(w.model, w.data)
+    human = HumanController(w, config=parse_human({"profile": "passive"}))
+    human.start("hand_to_robot", object="glass", grip="ag")
+    while not (w.human_holding() == "glass" and human.arm.arrived(w.time, 0.03)) and w.time < 10.0:
+        human.tick(w.time)
+        w.step(round(CONTROL_DT / w.model.opt.timestep))
+    hand = w.model.site("human_r_grasp").id
+    prim = P.Receive(robot, "glass", human_holds=lambda: w.human_holding() is not None, lifted=body_lift(w, "glass"),
+                     locate=lambda name: body_xy(w, name)())
+    touch = TouchMonitor(w.model, w.data)
+
+    def watch(t):
+        human.tick(t)
+        touch.update(t, 0.0)
+
+    pr, _ = run(w, prim, lambda: tuple(w.data.site_xpos[hand][:2]), seconds=60.0, each_tick=watch)
+    assert pr.status is P.Status.SUCCEEDED, pr.reason
+    gives = [b for b in human.done if b.name == "hand_to_robot"]
+    assert gives and gives[0].status == "succeeded", human.done
+    st = w.state()
+    assert st.human_holds is None and st.objects["glass"].zone == "RWS", st.summary()
+    assert touch.worst.depth <= TouchMonitor.DEEP, touch.worst

@@ -519,11 +519,25 @@ def hand_to_robot(c, object: str, grip: str | None = None, timeout: float = 40.0
     if not (yield from _give_into_the_robots_hand(c, object, timeout)):
         return False, f"the robot did not take the {object}"
     yield from _wait(c, c.profile.reaction_delay)
-    c.arm.set_posture("open")
-    yield from _wait(c, 0.5)
-    yield from _withdraw(c)
+    yield from _let_go(c, object)
     ok = c.world.human_holding() is None and c.view.holds == object
     return ok, f"{object} handed over"
+
+
+def _let_go(c, held: str) -> Generator[None, None, bool]:
+    """Let go of what the robot's hand now holds, the way the grip came in. A grip from above loosens, and the
+    hand rises off the object (APPROACH_BACK, slowly) before it opens: its fingers hang down the object's side
+    toward the robot, and opened there they would sweep out into the robot's hand beside them. A grip from the
+    side opens where it is, then withdraws back along its fingers (`_withdraw`). Loosening and rising are one
+    motion: no hesitation between them (the robot, feeling the object's weight, takes it away)."""
+    if c.arm.posture == "ag":
+        c.world.human_release(held)
+        hand, R = c.arm.hand_pose()
+        dur = c.arm.move_to(_approach_point(hand, R, "ag", APPROACH_BACK), R, t=c.t, speed=min(c.arm.speed, CAREFUL_SPEED), lift=False)
+        yield from _wait_until(c, lambda: c.arm.arrived(c.t, MOVE_TOL), dur + 1.5)
+    c.arm.set_posture("open")
+    yield from _wait(c, 0.5)
+    return (yield from _withdraw(c))
 
 
 def _robot_hand_still(c, showing: Callable[[RobotView], bool], seconds: float,

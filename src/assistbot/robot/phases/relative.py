@@ -36,6 +36,22 @@ class Relative(Move):
         self._goal = poses.pose(self.origin.rotation(), self.origin.translation() + self.offset)
 
 
+class TakeFromUnder(Relative):
+    """Straight down by ``drop`` m with what the hand has just taken from the person's hand, or as far as the
+    object's base (as seen when it was grasped, `Primitive.base_z`) stays ``clear`` m above the table: out from
+    under her fingers, which a grip from above hangs down the object's side between it and the palm. Taken
+    level away instead, the robot's fingers round the far side of the object sweep through hers."""
+
+    def __init__(self, name: str = "take from under", drop: float = 0.05, clear: float = 0.02, duration: float = 1.0) -> None:
+        super().__init__(name, np.zeros(3), duration=duration)
+        self.drop, self.clear = drop, clear
+
+    def start(self, prim):
+        room = prim.base_z() - (TABLE_Z + self.clear)
+        self.offset = np.array([0.0, 0.0, -max(0.0, min(self.drop, room))])
+        super().start(prim)
+
+
 class BackOff(Relative):
     """Withdraw the open hand along its approach axis (back toward the robot), level by default: the open
     fingers may still touch what they let go of (the glass fills their widest opening), and a hand that

@@ -7,7 +7,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from assistbot.robot.phases import BackOff, Move, Open, Phase, SetCarrying, Wait, WaitFor, WaitForTake
+from assistbot.robot.phases import BackOff, Move, Open, Phase, SetCarrying, Wait, WaitFor, WaitForLetGo, WaitForTake
 from assistbot.robot.placement import shared_spot
 from assistbot.robot.primitives.carry_over import CarryOver
 from assistbot.robot.primitives.geometry import GRASP_HEIGHT, grasp_pose_at
@@ -90,8 +90,8 @@ def give(timeout: float) -> list[Phase]:
 
 
 def waiting_for_the_person_to_let_go(timeout: float) -> WaitFor:
-    """Both hold the object: wait until the person lets go. Not let go in time, it stays theirs: the hand
-    opens and withdraws (no tug of war)."""
-    wait = WaitFor("wait for the human to let go", lambda p: not p.human_holds(), timeout, "the human did not let go")
+    """Both hold the object: wait until the person lets go (`WaitForLetGo`). Not let go in time, it stays
+    theirs: the hand opens and withdraws (no tug of war)."""
+    wait = WaitForLetGo(timeout)
     wait.fallback = lambda p: [Open("leave it to the person"), SetCarrying(False), BackOff(), *retract_phases()]
     return wait

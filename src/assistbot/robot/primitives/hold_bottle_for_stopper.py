@@ -86,7 +86,6 @@ class HoldBottleForStopper(Primitive):
             close_in_only_while_held_out(reach)
             self._from_her_hand = True
             return reach + [
-                Wait("hold", 1.5),
                 waiting_for_the_person_to_let_go(10.0),
                 *hold,
                 *put_down_at(lambda p: p._home()),

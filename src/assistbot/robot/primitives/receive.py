@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from assistbot.robot.phases import Phase, Relative, Wait, WaitFor
+from assistbot.robot.phases import Phase, Relative, TakeFromUnder, WaitFor
 from assistbot.robot.primitives.base import Primitive
 from assistbot.robot.primitives.handing_over import close_in_only_while_held_out, no_longer_held_out, waiting_for_the_person_to_let_go
 from assistbot.robot.primitives.places import free_rws_spot
@@ -43,8 +43,8 @@ class Receive(Primitive):
         # ... and while it closes in (a person who starts to pour instead is not reached into)
         close_in_only_while_held_out(reach)
         return reach + [
-            Wait("hold", 1.5),  # the human feels the robot's grip before letting go
             waiting_for_the_person_to_let_go(self.timeout),
+            TakeFromUnder(),
             Relative("take back", [0.06, 0.0, 0.03], duration=1.0),
             *put_down_at(lambda p: p.free_spot()),
             *retract_phases(),
