@@ -4,6 +4,7 @@ here (`body_xy`, `body_lift`).
 
 - The robot hands the person a full glass it holds by its upper part (`offer_grasp_height`); she takes it
   below the robot's hand where her eyes see room for her grip (`grip_beside_the_robots_hand`).
+- It turns the inverted glass, sets it down upright and gives it the same way (`TurnAndHandOver`).
 - She hands the robot the glass she holds from above; once it holds it, her hand rises off the glass
   before it opens (`behaviours._let_go`)."""
 
@@ -68,6 +69,41 @@ def test_she_takes_it_below_the_robots_hand_and_the_hands_stay_apart(handed):
     assert worst.depth <= TouchMonitor.DEEP, worst
     # her side grip (the palm's normal level, not down as from above), low on the glass, under the robot's hand
     assert abs(seen["palm_normal"][2]) < 0.5 and seen["taken_at"] < 0.03, seen
+
+
+def _taken_upright_with_the_hands_apart(w, human, pr, touch):
+    assert pr.status is P.Status.SUCCEEDED, pr.reason
+    takes = [b for b in human.done if b.name == "take_from_robot"]
+    assert takes and takes[0].status == "succeeded", human.done
+    # hers, upright: she may already have set the empty glass down on her side
+    st = w.state()
+    assert st.robot_holds is None and (st.human_holds == "glass" or st.objects["glass"].zone == "HWS"), st.summary()
+    assert w.data.xmat[w.body_id["glass"]][8] > 0.9
+    assert touch.worst.depth <= TouchMonitor.DEEP, touch.worst
+
+
+def test_the_turned_glass_is_set_down_and_given_by_its_upper_part_with_the_hands_apart():
+    """Held out by its middle, as the turn leaves it in the hand, the glass left her fingers no room beside the
+    robot's palm (2.4 cm into it here, 2.7 cm in the task-space matrix): it is set down upright and taken again by
+    its upper part."""
+    w = build_world(Arrangement.from_options("HWS:open@-0.22,-0.12", "RWS:inverted@0.22,-0.10"), seed=0)
+    robot = RobotController(w.model, w.data)
+    human = HumanController(w, config=parse_human({"profile": "passive"}))
+    prim = P.TurnAndHandOver(robot, "glass", human_holds=lambda: w.human_holding() == "glass",
+                             locate=lambda name: body_xy(w, name)())
+    touch = TouchMonitor(w.model, w.data)
+    held = []
+
+    def watch(t):
+        if human.current is None and not human.done and prim.progress.phase == P.OFFER_PHASE:
+            held.append(float(robot.tcp_pose().translation()[2] - w.data.xpos[w.body_id["glass"]][2]))
+            human.start("take_from_robot", object="glass")
+        human.tick(t)
+        touch.update(t, 0.0)
+
+    pr, _ = run(w, prim, body_xy(w, "glass"), seconds=60.0, each_tick=watch)
+    _taken_upright_with_the_hands_apart(w, human, pr, touch)
+    assert held and held[0] > P.GRASP_HEIGHT["glass"] + 0.025, held
 
 
 def test_she_lets_go_of_the_glass_she_held_from_above_without_sweeping_into_the_robots_hand():

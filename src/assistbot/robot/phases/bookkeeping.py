@@ -27,3 +27,17 @@ class RememberPlace(Phase):
         prim.home_xy = prim.xy().copy()
         prim.robot.hold()
         return Status.SUCCEEDED, ""
+
+
+class HoldAt(Phase):
+    """From here on the hand takes its object ``height`` m above the object's base (`Primitive.held_at`)."""
+
+    name = "hold at"
+
+    def __init__(self, height: float) -> None:
+        self.height = height
+
+    def tick(self, prim, dt, t):
+        prim.held_at = self.height
+        prim.robot.hold()
+        return Status.SUCCEEDED, ""

@@ -2,11 +2,21 @@
 
 from __future__ import annotations
 
-from assistbot.robot.phases import Move
+from assistbot.robot.phases import Move, Phase
 from assistbot.robot.primitives.base import Primitive
 from assistbot.robot.primitives.geometry import LIFT, offer_grasp_height, side_grasp_pose
 from assistbot.robot.primitives.handing_over import give, hand_not_free, hold_out
 from assistbot.robot.primitives.reaching import reach_and_grasp_phases
+
+
+def offer_phases(timeout: float) -> list[Phase]:
+    """The object just grasped from the table: lift it, carry it upright (slowly: it may be a full glass) to
+    the hand-over zone, hold it out and give it (`give`)."""
+    return [
+        Move("lift", lambda p: side_grasp_pose(p, up=LIFT), duration=1.5),
+        *hold_out(duration=3.0),
+        *give(timeout),
+    ]
 
 
 class HandOver(Primitive):
@@ -22,11 +32,7 @@ class HandOver(Primitive):
         self.held_at = offer_grasp_height(obj, robot.gripper)
 
     def phases(self):
-        return reach_and_grasp_phases(self) + [
-            Move("lift", lambda p: side_grasp_pose(p, up=LIFT), duration=1.5),
-            *hold_out(duration=3.0),
-            *give(self.timeout),
-        ]
+        return reach_and_grasp_phases(self) + offer_phases(self.timeout)
 
     def interrupted(self, phase) -> str:
         return hand_not_free(self, phase)

@@ -28,6 +28,17 @@ def turn_phases() -> list[Phase]:
     ]
 
 
+def set_down_turned() -> list[Phase]:
+    """Set the glass turned in the hand down upright where it was taken (the hand still rolled), let go,
+    and back off."""
+    return [
+        Move("lower", lambda p: side_grasp_pose(p, up=0.008, roll=math.pi), duration=1.2),
+        Open("release"),
+        SetCarrying(False),
+        Move("back off", lambda p: side_grasp_pose(p, back=PRE_GRASP_BACK, up=0.03, roll=math.pi), duration=1.0, tolerance=0.04),
+    ]
+
+
 class TurnGlass(Primitive):
     """Grasp the inverted glass, lift, roll it 180 deg about the approach axis, put it down upright, let go."""
 
@@ -40,10 +51,4 @@ class TurnGlass(Primitive):
         return seen_upright(self, phase)
 
     def phases(self):
-        return reach_and_grasp_phases(self) + turn_phases() + [
-            Move("lower", lambda p: side_grasp_pose(p, up=0.008, roll=math.pi), duration=1.2),
-            Open("release"),
-            SetCarrying(False),
-            Move("back off", lambda p: side_grasp_pose(p, back=PRE_GRASP_BACK, up=0.03, roll=math.pi), duration=1.0, tolerance=0.04),
-            *retract_phases(),
-        ]
+        return reach_and_grasp_phases(self) + turn_phases() + set_down_turned() + retract_phases()
