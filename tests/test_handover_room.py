@@ -6,10 +6,12 @@ here (`body_xy`, `body_lift`).
   below the robot's hand where her eyes see room for her grip (`grip_beside_the_robots_hand`).
 - It turns the inverted glass, sets it down upright and gives it the same way (`TurnAndHandOver`).
 - She hands the robot the glass she holds from above; once it holds it, her hand rises off the glass
-  before it opens (`behaviours._let_go`)."""
+  before it opens (`behaviours._let_go`). The robot waits to feel her let go (`WaitForLetGo`), and lowers
+  the glass out from under her fingers before it takes it back (`TakeFromUnder`)."""
 
 from __future__ import annotations
 
+import numpy as np
 import pytest
 
 from assistbot.episode.touch import TouchMonitor
@@ -133,3 +135,57 @@ def test_she_lets_go_of_the_glass_she_held_from_above_without_sweeping_into_the_
     st = w.state()
     assert st.human_holds is None and st.objects["glass"].zone == "RWS", st.summary()
     assert touch.worst.depth <= TouchMonitor.DEEP, touch.worst
+
+
+def _she_lets_go_but_leaves_her_hand(release_after: float, cameras_say_holding: bool):
+    """She holds the glass out from above; ``release_after`` s after the robot's grip closes her grip gives, and
+    her arm and fingers stay where they were. The robot's view of her holding it: the truth, or (not
+    ``cameras_say_holding``) never, as the cameras read her hand round the glass the robot holds as open."""
+    w = build_world(Arrangement.from_options("RWS:closed@0.2,0.2", "HWS:empty@-0.20,0.05"), seed=0)
+    robot = RobotController(w.model, w.data)
+    human = HumanController(w, config=parse_human({"profile": "passive"}))
+    human.start("hand_to_robot", object="glass", grip="ag")
+    while not (w.human_holding() == "glass" and human.arm.arrived(w.time, 0.03)) and w.time < 10.0:
+        human.tick(w.time)
+        w.step(round(CONTROL_DT / w.model.opt.timestep))
+    hand = w.model.site("human_r_grasp").id
+    holds = (lambda: w.human_holding() is not None) if cameras_say_holding else (lambda: False)
+    prim = P.Receive(robot, "glass", human_holds=holds, lifted=body_lift(w, "glass"), locate=lambda name: body_xy(w, name)())
+    touch = TouchMonitor(w.model, w.data)
+    grasped: list = []
+    moved = [0.0]     # how far (m) the robot's hand went while she still held the glass
+
+    def watch(t):
+        if not grasped and robot.gripper.grasps():
+            grasped.append((t, robot.tcp_pose().translation().copy()))
+        if grasped and w.human_holding() is not None:
+            moved[0] = max(moved[0], float(np.linalg.norm(robot.tcp_pose().translation() - grasped[0][1])))
+            if t >= grasped[0][0] + release_after:
+                w.human_release("glass")
+        if not grasped:
+            human.tick(t)
+        touch.update(t, 0.0)
+
+    pr, _ = run(w, prim, lambda: tuple(w.data.site_xpos[hand][:2]), seconds=60.0, each_tick=watch)
+    return w, pr, touch.worst, moved[0]
+
+
+def test_the_robot_takes_the_glass_down_from_under_fingers_left_hanging_on_it():
+    """Let go of, the glass is lowered out from under her fingers, which hang down its side between it and the
+    robot's palm, before it is taken back (taken back level, the robot's fingers round its far side swept
+    through hers: 1.6 cm)."""
+    w, pr, worst, _ = _she_lets_go_but_leaves_her_hand(1.0, cameras_say_holding=True)
+    assert pr.status is P.Status.SUCCEEDED, pr.reason
+    st = w.state()
+    assert st.human_holds is None and st.objects["glass"].zone == "RWS", st.summary()
+    assert worst.depth <= TouchMonitor.DEEP, worst
+
+
+def test_the_robot_waits_to_feel_the_glass_let_go_where_the_cameras_cannot_tell():
+    """The cameras read her hand as open from the moment the robot's closes round the glass: the robot's
+    hand holds still until the glass's weight comes onto it, 2 s later, and then takes it."""
+    w, pr, worst, moved = _she_lets_go_but_leaves_her_hand(2.0, cameras_say_holding=False)
+    assert pr.status is P.Status.SUCCEEDED, pr.reason
+    assert moved < 0.01, moved
+    assert w.state().objects["glass"].zone == "RWS", w.state().summary()
+    assert worst.depth <= TouchMonitor.DEEP, worst
