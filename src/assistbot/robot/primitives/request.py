@@ -8,7 +8,7 @@ import mink
 import numpy as np
 
 from assistbot.robot import poses
-from assistbot.robot.phases import Move, Open, Rise, Wait
+from assistbot.robot.phases import BackOff, Move, Open, Rise, Wait
 from assistbot.robot.primitives.base import Primitive
 from assistbot.robot.primitives.reaching import retract_phases
 from assistbot.task import OBJECTS
@@ -36,6 +36,7 @@ class Request(Primitive):
     OVER_HEIGHT = 0.33  # above the table: the hand goes out and back at this height
     HAND_X = 0.06  # table x of the held-out hand, just on the robot's side of the middle line
     SHOW_SECONDS = 2.0
+    DRAW_BACK = 0.16  # m the shown hand is drawn back, level, before it rises (a hand held out over it)
     PALM_UP = math.radians(60)
     Y_RANGE = (-0.12, 0.30)
 
@@ -78,4 +79,7 @@ class Request(Primitive):
         return [Open("open"), Rise("rise", TABLE_Z + self.OVER_HEIGHT),
                 Move("over", lambda p: goal(p, self.OVER_HEIGHT), duration=1.5, tolerance=0.04),
                 Move("hold out open hand", goal, duration=1.0, tolerance=0.03),
-                Wait("show the open hand", self.SHOW_SECONDS), *retract_phases(over_at=TABLE_Z + self.OVER_HEIGHT)]
+                Wait("show the open hand", self.SHOW_SECONDS),
+                # drawn back level first: the person may already hold the object out over the open hand, and a
+                # hand rising from there goes up through her fingers
+                BackOff("draw back", distance=self.DRAW_BACK), *retract_phases(over_at=TABLE_Z + self.OVER_HEIGHT)]
