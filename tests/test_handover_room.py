@@ -189,3 +189,4 @@ def test_the_robot_waits_to_feel_the_glass_let_go_where_the_cameras_cannot_tell(
     assert moved < 0.01, moved
     assert w.state().objects["glass"].zone == "RWS", w.state().summary()
     assert worst.depth <= TouchMonitor.DEEP, worst
+

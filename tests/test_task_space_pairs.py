@@ -1,7 +1,6 @@
-"""Arrangement-profile pairs of the task space that failed when the task-space issue was filed and drink
-now (vision, the default policies, seed 1 as in `make matrix`): each must drink, spilling under 10 %.
-The other two pairs named there (the closed bottle and the inverted glass both on the person's side,
-active and passive) still fail; the README's task-space figures say so."""
+"""The six arrangement-profile pairs of the task space that failed when the task-space issue was filed (vision,
+the default policies, seed 1 as in `make matrix`): each must drink, spilling under 10 %, with no robot geom more
+than 1 cm into the person's (`TouchMonitor.DEEP`)."""
 
 from __future__ import annotations
 
@@ -18,9 +17,11 @@ pytestmark = pytest.mark.slow
 BASE = Path(__file__).resolve().parents[1] / "scenarios" / "sweeps" / "matrix-base.yaml"
 
 PAIRS = [
+    ("active", "HWS:closed", "HWS:inverted"),
     ("active", "HWS:open", "HWS:empty"),
     ("active", "HWS:closed", "RWS:full"),
     ("active", "HWS:open", "RWS:inverted"),
+    ("passive", "HWS:closed", "HWS:inverted"),
     ("passive", "HWS:closed", "HWS:empty"),
 ]
 
@@ -39,6 +40,7 @@ def test_the_pair_drinks(profile, bottle, glass):
     r = _episode(profile, bottle, glass)
     assert r.success and r.end_reason == "drink", (r.end_reason, [a for _, a in r.decisions])
     assert r.spilled_fraction < 0.1
+    assert r.touched_person["depth"] <= TouchMonitor.DEEP, r.touched_person
 
 
 
