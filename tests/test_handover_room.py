@@ -108,10 +108,9 @@ def test_the_turned_glass_is_set_down_and_given_by_its_upper_part_with_the_hands
     assert held and held[0] > P.GRASP_HEIGHT["glass"] + 0.025, held
 
 
-def test_she_lets_go_of_the_glass_she_held_from_above_without_sweeping_into_the_robots_hand():
-    """Her grip from above hangs her fingers down the glass's side toward the robot; opened there, they swept
-    2.5 cm into its palm here (2.2 cm in the task-space matrix). She lets go by rising off the glass first, and
-    it ends in the robot's hand."""
+def _glass_held_out_from_above():
+    """A passive person running her own `hand_to_robot`: the glass grasped from above and held out, settled there.
+    The world, the robot, the person, and her grasp site (where the robot's target field looks)."""
     w = build_world(Arrangement.from_options("RWS:closed@0.2,0.2", "HWS:empty@-0.20,0.05"), seed=0)
     robot = RobotController(w.model, w.data)
     human = HumanController(w, config=parse_human({"profile": "passive"}))
@@ -119,7 +118,14 @@ def test_she_lets_go_of_the_glass_she_held_from_above_without_sweeping_into_the_
     while not (w.human_holding() == "glass" and human.arm.arrived(w.time, 0.03)) and w.time < 10.0:
         human.tick(w.time)
         w.step(round(CONTROL_DT / w.model.opt.timestep))
-    hand = w.model.site("human_r_grasp").id
+    return w, robot, human, w.model.site("human_r_grasp").id
+
+
+def test_she_lets_go_of_the_glass_she_held_from_above_without_sweeping_into_the_robots_hand():
+    """Her grip from above hangs her fingers down the glass's side toward the robot; opened there, they swept
+    2.5 cm into its palm here (2.2 cm in the task-space matrix). She lets go by rising off the glass first, and
+    it ends in the robot's hand."""
+    w, robot, human, hand = _glass_held_out_from_above()
     prim = P.Receive(robot, "glass", human_holds=lambda: w.human_holding() is not None, lifted=body_lift(w, "glass"),
                      locate=lambda name: body_xy(w, name)())
     touch = TouchMonitor(w.model, w.data)
@@ -141,14 +147,7 @@ def _she_lets_go_but_leaves_her_hand(release_after: float, cameras_say_holding: 
     """She holds the glass out from above; ``release_after`` s after the robot's grip closes her grip gives, and
     her arm and fingers stay where they were. The robot's view of her holding it: the truth, or (not
     ``cameras_say_holding``) never, as the cameras read her hand round the glass the robot holds as open."""
-    w = build_world(Arrangement.from_options("RWS:closed@0.2,0.2", "HWS:empty@-0.20,0.05"), seed=0)
-    robot = RobotController(w.model, w.data)
-    human = HumanController(w, config=parse_human({"profile": "passive"}))
-    human.start("hand_to_robot", object="glass", grip="ag")
-    while not (w.human_holding() == "glass" and human.arm.arrived(w.time, 0.03)) and w.time < 10.0:
-        human.tick(w.time)
-        w.step(round(CONTROL_DT / w.model.opt.timestep))
-    hand = w.model.site("human_r_grasp").id
+    w, robot, human, hand = _glass_held_out_from_above()
     holds = (lambda: w.human_holding() is not None) if cameras_say_holding else (lambda: False)
     prim = P.Receive(robot, "glass", human_holds=holds, lifted=body_lift(w, "glass"), locate=lambda name: body_xy(w, name)())
     touch = TouchMonitor(w.model, w.data)

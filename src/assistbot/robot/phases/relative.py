@@ -5,7 +5,7 @@ from __future__ import annotations
 import numpy as np
 
 from assistbot.robot import poses
-from assistbot.robot.phases.move import Move
+from assistbot.robot.phases.move import Move, unreachable
 from assistbot.robot.primitives.geometry import WALL_TOP
 from assistbot.world.layout import TABLE_Z
 
@@ -36,22 +36,6 @@ class Relative(Move):
         self._goal = poses.pose(self.origin.rotation(), self.origin.translation() + self.offset)
 
 
-class TakeFromUnder(Relative):
-    """Straight down by ``drop`` m with what the hand has just taken from the person's hand, or as far as the
-    object's base (as seen when it was grasped, `Primitive.base_z`) stays ``clear`` m above the table: out from
-    under her fingers, which a grip from above hangs down the object's side between it and the palm. Taken
-    level away instead, the robot's fingers round the far side of the object sweep through hers."""
-
-    def __init__(self, name: str = "take from under", drop: float = 0.05, clear: float = 0.02, duration: float = 1.0) -> None:
-        super().__init__(name, np.zeros(3), duration=duration)
-        self.drop, self.clear = drop, clear
-
-    def start(self, prim):
-        room = prim.base_z() - (TABLE_Z + self.clear)
-        self.offset = np.array([0.0, 0.0, -max(0.0, min(self.drop, room))])
-        super().start(prim)
-
-
 class BackOff(Relative):
     """Withdraw the open hand along its approach axis (back toward the robot), level by default: the open
     fingers may still touch what they let go of (the glass fills their widest opening), and a hand that
@@ -67,6 +51,30 @@ class BackOff(Relative):
         ax[2] = 0.0
         ax /= max(np.linalg.norm(ax), 1e-9)
         self._goal = poses.pose(self.origin.rotation(), self.origin.translation() - self.distance * ax + [0, 0, self.up])
+
+
+class TakeFromUnder(BackOff):
+    """Down by ``drop`` m, and ``back`` m level toward the robot, with what the hand has just taken from the
+    person's hand: out from under her fingers, which a grip from above hangs down the object's side between it
+    and the palm (taken back level, the robot's fingers round the object's far side sweep through hers). As far
+    down as the object's base (as seen when it was grasped, `Primitive.base_z`) stays ``clear`` m above the
+    table, and as the arm reaches: a hand at the arm's reach held out and straight down would go beyond it,
+    which the way back makes up for."""
+
+    STEPS = 6     # the drops tried, from the whole down to none
+
+    def __init__(self, name: str = "take from under", drop: float = 0.05, back: float = 0.04, clear: float = 0.02,
+                 duration: float = 1.0) -> None:
+        super().__init__(name, distance=back, duration=duration)
+        self.drop, self.clear = drop, clear
+
+    def start(self, prim):
+        room = max(0.0, min(self.drop, prim.base_z() - (TABLE_Z + self.clear)))
+        for down in np.linspace(room, 0.0, self.STEPS):
+            self.up = -float(down)
+            super().start(prim)
+            if not unreachable(prim, self._goal):
+                return
 
 
 class RiseClear(Rise):
