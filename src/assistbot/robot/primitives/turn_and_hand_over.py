@@ -15,8 +15,8 @@ class TurnAndHandOver(Primitive):
     """Turn the inverted glass in the air (as `TurnGlass`) and set it down upright; take it again by its upper
     part and give it to the human (as `HandOver`). The turn holds the glass by its middle (the hand grasps the
     inverted glass standing on the table, its palm above the table), and a glass held out by its middle
-    leaves the person's fingers no room beside the robot's palm (docs/measurements.md, "Each hand on the
-    part the other leaves free")."""
+    leaves the person's fingers no room beside the robot's palm (docs/measurements.md, "Letting go where the
+    other's hand is")."""
 
     name = "turn_and_hand_over"
 
