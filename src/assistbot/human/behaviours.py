@@ -196,8 +196,9 @@ def _carry_path(c, p) -> list[np.ndarray]:
 
 
 def _move_straight(c, p, R=None, speed: float | None = None, tol: float = MOVE_TOL,
-                   stop: Callable[[], bool] | None = None, lift: bool = True) -> Generator[None, None, bool]:
-    if c.profile.hesitation > 0:
+                   stop: Callable[[], bool] | None = None, lift: bool = True,
+                   hesitate: bool = True) -> Generator[None, None, bool]:
+    if hesitate and c.profile.hesitation > 0:
         yield from _wait(c, c.profile.hesitation)
     dur = c.arm.move_to(p, R, t=c.t, speed=speed, lift=lift)
     t_end = c.t + dur + 1.5
@@ -533,8 +534,8 @@ def _let_go(c, held: str) -> Generator[None, None, bool]:
     if c.arm.posture == "ag":
         c.world.human_release(held)
         hand, R = c.arm.hand_pose()
-        dur = c.arm.move_to(_approach_point(hand, R, "ag", APPROACH_BACK), R, t=c.t, speed=min(c.arm.speed, CAREFUL_SPEED), lift=False)
-        yield from _wait_until(c, lambda: c.arm.arrived(c.t, MOVE_TOL), dur + 1.5)
+        yield from _move_straight(c, _approach_point(hand, R, "ag", APPROACH_BACK), R, speed=min(c.arm.speed, CAREFUL_SPEED),
+                                  lift=False, hesitate=False)
     c.arm.set_posture("open")
     yield from _wait(c, 0.5)
     return (yield from _withdraw(c))
