@@ -70,3 +70,25 @@ def test_same_seed_same_trajectory():
     a, la = _trajectory(3)
     b, lb = _trajectory(3)
     assert la == lb and np.array_equal(a, b)
+
+
+def test_asked_for_the_bottle_she_holds_by_its_middle_she_gives_it_from_above():
+    """Held out by a side grip round its middle (the wrong grip, taken to hold it out), the bottle leaves no room
+    for the robot's hand: her fingers wrap the side it closes on (2.5 cm into its palm in the task-space matrix).
+    Asked to hand it over from above, she sets it down and takes it again that way before she holds it out."""
+    from assistbot.human.behaviours import GRASP_HEIGHT
+
+    w = build_world(Arrangement.from_options("HWS:closed", "RWS:empty"), seed=0)
+    hc = HumanController(w, profile="active")
+    hc.start("grasp", object="bottle", grip="sg", hold_out=True)
+    hc.run(9.0)
+    assert w.state().human_holds == "bottle" and hc.arm.posture == "sg"
+    hc.start("hand_to_robot", object="bottle", grip="ag")
+    lowest = np.inf
+    for _ in range(40):
+        hc.run(0.5)
+        lowest = min(lowest, float(w.data.xpos[w.body_id["bottle"]][2]))
+    assert lowest < layout.TABLE_Z + 0.005            # set down on the table in between
+    assert w.state().human_holds == "bottle" and hc.arm.posture == "ag"
+    base = w.data.xpos[w.body_id["bottle"]][2]
+    assert w.site_pos("human_r_grasp")[2] - base == pytest.approx(GRASP_HEIGHT[("bottle", "ag")], abs=0.02)

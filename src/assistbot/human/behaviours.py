@@ -510,6 +510,12 @@ def put_down_for_robot(c) -> Gen:
 def hand_to_robot(c, object: str, grip: str | None = None, timeout: float = 40.0) -> Gen:
     """Grasp `object` (if not in hand), hold it out, and let go once the robot holds it."""
     c.policy_state["offered"] = object      # what "it" means if the robot then asks her to set it down
+    if c.world.human_holding() == object and grip is not None and c.arm.posture != grip:
+        # held by another grip than the one asked for (a side grip round its middle, taken to hold it out):
+        # the taker's hand would close where her fingers wrap it, so she sets it down and takes it again
+        ok, why = yield from put_down(c, object)
+        if not ok:
+            return False, why
     if c.world.human_holding() != object:
         ok, why = yield from grasp(c, object, grip or c.profile.grip)
         if not ok:

@@ -60,7 +60,7 @@ def response_to_tag(c, tag: str) -> list[tuple[str, dict]]:
         held_out = holding == "bottle" and c.world.site_pos("human_r_grasp")[0] > HANDOVER_ZONE_X[0]
         if held_out and not handing_over:
             # the robot is coming for the bottle he holds out: he keeps it there until the robot has it
-            out.append(("hand_to_robot", {"object": "bottle"}))
+            out.append(("hand_to_robot", {"object": "bottle", "grip": c.profile.grip}))
         elif holding is not None and not handing_over:
             out.append(("put_down", {}))
         return out + [("pull_stopper", {"wait_for_robot": 30.0})]
