@@ -189,30 +189,3 @@ def test_the_robot_waits_to_feel_the_glass_let_go_where_the_cameras_cannot_tell(
     assert w.state().objects["glass"].zone == "RWS", w.state().summary()
     assert worst.depth <= TouchMonitor.DEEP, worst
 
-
-
-@pytest.mark.parametrize("deeper", [0.0, 0.015])
-def test_the_palm_stops_short_of_the_wall_of_a_glass_held_from_above(deeper):
-    """Seen held from above, the glass is taken with the palm ROOM_FOR_HER_FINGERS short of its wall: her fingers
-    hang down its side toward the robot there. The axis seen ``deeper`` (m, away from the robot, as vision
-    places it in some frames), the palm came to the wall, 1.3 cm into her fingers in the task-space matrix."""
-    w, robot, human, hand = _glass_held_out_from_above()
-    prim = P.Receive(robot, "glass", human_holds=lambda: w.human_holding() is not None, lifted=body_lift(w, "glass"),
-                     locate=lambda name: body_xy(w, name)(), holder_grip=lambda: "ag")
-    touch = TouchMonitor(w.model, w.data)
-    face = w.model.site("robot_palm_face").id
-    glass = w.body_id["glass"]
-    gap: list = []
-
-    def watch(t):
-        if not gap and robot.gripper.grasps():
-            gap.append(float(np.linalg.norm(w.data.site_xpos[face][:2] - w.data.xpos[glass][:2])) - P.RADIUS["glass"])
-        human.tick(t)
-        touch.update(t, 0.0)
-
-    pr, _ = run(w, prim, lambda: (w.data.site_xpos[hand][0] - deeper, w.data.site_xpos[hand][1]), seconds=60.0,
-                each_tick=watch)
-    assert pr.status is P.Status.SUCCEEDED, pr.reason
-    assert w.state().human_holds is None and w.state().objects["glass"].zone == "RWS", w.state().summary()
-    assert gap and gap[0] > 0.008, gap       # the palm's face off the wall: 0.5 cm and 0.1 cm without the room
-    assert touch.worst.depth <= TouchMonitor.DEEP, touch.worst
