@@ -1,10 +1,12 @@
 """Behaviours in physics: grasps from two placements, the stopper pull (fails free, works held),
-the passive profile's patience, determinism.  (The stopper pull while the robot holds the bottle,
-with the `human.standin` robot, is in test_human_acts.py.)"""
+the passive profile's patience, determinism, the wrong grip set down and taken again to give.
+(The stopper pull while the robot holds the bottle, with the `human.standin` robot, is in
+test_human_acts.py.)"""
 
 import numpy as np
 import pytest
 
+from assistbot.human.behaviours import GRASP_HEIGHT
 from assistbot.human.controller import HumanController
 from assistbot.world import Arrangement, build_world, layout
 
@@ -76,8 +78,6 @@ def test_asked_for_the_bottle_she_holds_by_its_middle_she_gives_it_from_above():
     """Held out by a side grip round its middle (the wrong grip, taken to hold it out), the bottle leaves no room
     for the robot's hand: her fingers wrap the side it closes on (2.5 cm into its palm in the task-space matrix).
     Asked to hand it over from above, she sets it down and takes it again that way before she holds it out."""
-    from assistbot.human.behaviours import GRASP_HEIGHT
-
     w = build_world(Arrangement.from_options("HWS:closed", "RWS:empty"), seed=0)
     hc = HumanController(w, profile="active")
     hc.start("grasp", object="bottle", grip="sg", hold_out=True)

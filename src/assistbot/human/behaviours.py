@@ -508,7 +508,8 @@ def put_down_for_robot(c) -> Gen:
 
 
 def hand_to_robot(c, object: str, grip: str | None = None, timeout: float = 40.0) -> Gen:
-    """Grasp `object` (if not in hand), hold it out, and let go once the robot holds it."""
+    """Grasp `object` (if not in hand, or held by another grip than ``grip``: then set down first), hold it out,
+    and let go once the robot holds it."""
     c.policy_state["offered"] = object      # what "it" means if the robot then asks her to set it down
     if c.world.human_holding() == object and grip is not None and c.arm.posture != grip:
         # held by another grip than the one asked for (a side grip round its middle, taken to hold it out):

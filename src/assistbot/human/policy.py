@@ -59,7 +59,8 @@ def response_to_tag(c, tag: str) -> list[tuple[str, dict]]:
         handing_over = c.current is not None and c.current.name == "hand_to_robot"
         held_out = holding == "bottle" and c.world.site_pos("human_r_grasp")[0] > HANDOVER_ZONE_X[0]
         if held_out and not handing_over:
-            # the robot is coming for the bottle he holds out: he keeps it there until the robot has it
+            # the robot is coming for the bottle he holds out: he keeps it there until the robot has it (held by
+            # another grip than his usual one for giving, he first sets it down and takes it again that way)
             out.append(("hand_to_robot", {"object": "bottle", "grip": c.profile.grip}))
         elif holding is not None and not handing_over:
             out.append(("put_down", {}))
