@@ -189,3 +189,35 @@ def test_the_robot_waits_to_feel_the_glass_let_go_where_the_cameras_cannot_tell(
     assert w.state().objects["glass"].zone == "RWS", w.state().summary()
     assert worst.depth <= TouchMonitor.DEEP, worst
 
+
+@pytest.mark.parametrize("deeper", [0.0, 0.015])
+def test_a_glass_held_from_above_is_taken_low_with_the_palm_short_of_her_fingers(deeper):
+    """Seen held from above, the glass is taken by its lower part (the palm's lower edge at its base) with the palm
+    ROOM_FOR_HER_FINGERS short of its wall: her fingers hang down its upper part toward the robot. The axis seen
+    ``deeper`` (m, away from the robot, as vision places it in some frames) or not: with the nominal grasp the
+    palm came to the wall, 1.3 cm into her fingers in the task-space matrix; short of the wall but at the
+    nominal height, the upper finger closing round the glass went 1.7 cm into them."""
+    w, robot, human, hand = _glass_held_out_from_above()
+    prim = P.Receive(robot, "glass", human_holds=lambda: w.human_holding() is not None, lifted=body_lift(w, "glass"),
+                     locate=lambda name: body_xy(w, name)(), holder_grip=lambda: "ag")
+    touch = TouchMonitor(w.model, w.data)
+    face = w.model.site("robot_palm_face").id
+    glass = w.body_id["glass"]
+    grasp: list = []     # the palm face's gap to the wall, and the TCP's height above the glass's base
+
+    def watch(t):
+        if not grasp and robot.gripper.grasps():
+            grasp.append((float(np.linalg.norm(w.data.site_xpos[face][:2] - w.data.xpos[glass][:2])) - P.RADIUS["glass"],
+                          float(robot.tcp_pose().translation()[2] - w.data.xpos[glass][2])))
+        human.tick(t)
+        touch.update(t, 0.0)
+
+    pr, _ = run(w, prim, lambda: (w.data.site_xpos[hand][0] - deeper, w.data.site_xpos[hand][1]), seconds=60.0,
+                each_tick=watch)
+    assert pr.status is P.Status.SUCCEEDED, pr.reason
+    assert w.state().human_holds is None and w.state().objects["glass"].zone == "RWS", w.state().summary()
+    assert grasp, "the hand never closed on the glass"
+    gap, height = grasp[0]
+    assert gap > 0.008, grasp                         # the palm's face off the wall (0.5 cm and 0.1 cm at it)
+    assert height < P.held_grasp_height("glass", robot.gripper) - 0.005, grasp    # below the band's middle
+    assert touch.worst.depth <= TouchMonitor.DEEP, touch.worst

@@ -41,6 +41,8 @@ STEADY_STATE = 0.3
 STATE_FRESH = 0.5
 #: postures in which the hand uses what it holds for itself
 USING = ("pour", "drink")
+#: postures of a hand holding something, and the grip each is (`Primitive.holder_grip`)
+HELD_GRIPS = {"grasp_ag": "ag", "grasp_sg": "sg"}
 #: postures of a hand reaching for an object or closing on it
 REACHING = ("reach", "grasp_ag", "grasp_sg")
 #: s after the hand was last seen pouring or drinking in which it offers nothing: it first puts down what it used
@@ -77,6 +79,7 @@ class RobotExecutor:
         self._aim: str | None = None  # what the action's target is perceived as: an object, or "held_out"
         self._in_hand: str | None = None       # what the hand closed on (`holding`)
         self._held_out_name: str | None = None  # what the person was last seen holding, during this action
+        self._held_grip: str | None = None      # ... and with which grip ("ag", "sg")
         self._away_since: float | None = None   # since when what the hand believes it holds is seen elsewhere
         self._lost = False                       # ... long enough: this action's grasp is not of it
         # the frames of the last OFFER_WINDOW showing the hand, each with what the hand holds in it (`_hand_busy`)
@@ -282,6 +285,7 @@ class RobotExecutor:
         self._aim = aim
         self._held_out_seen = False
         self._held_out_name = None
+        self._held_grip = None
         self._away_since, self._lost = None, False
         obj = aim
         if aim == "held_out" and self._percept is not None and self._percept.hand.seen and self._percept.hand.object_in_hand:
@@ -292,7 +296,7 @@ class RobotExecutor:
                              identify=lambda: self._held_out_name, seen_elsewhere=self._seen_elsewhere,
                              offered=self._offered, held_out=self._held_out, hand_busy=lambda: self._hand_busy(self.primitive.object),
                              seen_state=self._seen_state,
-                             reaching_hand=self._reaching_hand)
+                             reaching_hand=self._reaching_hand, holder_grip=lambda: self._held_grip)
         # hidden right now (often behind the robot's own arm): start from where it was last seen;
         # the gaze goes there and the target field takes over once the cameras see it again
         self.primitive.start(self._locate(aim))
@@ -308,6 +312,8 @@ class RobotExecutor:
             self._open_hand = (percept.t, tuple(float(v) for v in h.position))
         if h.seen and h.object_in_hand:
             self._held_out_name = h.object_in_hand
+            if h.posture in HELD_GRIPS:
+                self._held_grip = HELD_GRIPS[h.posture]
         if h.seen:
             o = percept.objects.get(h.object_in_hand) if h.object_in_hand else None
             standing = o is not None and o.seen and o.position[2] < STANDING_Z

@@ -53,7 +53,8 @@ class Primitive:
                  held_out: Callable[[], bool] | None = None,
                  hand_busy: Callable[[], bool] | None = None,
                  seen_state: Callable[[str], str | None] | None = None,
-                 reaching_hand: Callable[[], tuple[float, float, float] | None] | None = None) -> None:
+                 reaching_hand: Callable[[], tuple[float, float, float] | None] | None = None,
+                 holder_grip: Callable[[], str | None] | None = None) -> None:
         """``obj``: the object acted on ("bottle", "glass", "held_out" for whatever the human holds out).
 
         Callbacks (all from perception, never from the physics' ground truth):
@@ -79,6 +80,8 @@ class Primitive:
                              seen it steadily of late, or None (not seen, or read one way and another).
           reaching_hand()    table (x, y, z) of the person's hand as seen in this frame reaching or
                              closing on something, or None.
+          holder_grip()      how the person was last seen holding what she holds, during this action: "ag"
+                             (from above), "sg" (from the side), or None (not seen holding anything).
         """
         self.robot = robot
         self.object = obj
@@ -95,6 +98,7 @@ class Primitive:
         self.hand_busy = hand_busy or (lambda: False)
         self.seen_state = seen_state or (lambda name: None)
         self.reaching_hand = reaching_hand or (lambda: None)
+        self.holder_grip = holder_grip or (lambda: None)
         self._offer: np.ndarray | None = None
         #: m above the object's base at which the hand takes it from the table and holds it (None: GRASP_HEIGHT)
         self.held_at: float | None = None

@@ -61,12 +61,18 @@ def closes_short(obj: str) -> float:
     return OPEN_HAND_REACH - (2.0 * RADIUS[obj] - TCP_CYLINDER_RADIUS)
 
 
-def held_grasp_height(obj: str, hand: "Gripper") -> float:
+def held_grasp_height(obj: str, hand: "Gripper", from_above: bool = False) -> float:
     """Grasp height (m above the base) of an object held up by the person: the middle of the band in
     which the whole hand lies along the object's wall (palm above the base, upper finger below the
     wall's top), since the base is seen only to a cm or two there. The glass's band is 2 cm wide: its
     rim lies 10 cm up, and a finger above it curls over the top onto the palm (and, opened, catches
-    inside the glass). Unknown which object ("held_out"): the band both share."""
+    inside the glass). Unknown which object ("held_out"): the band both share.
+
+    Held ``from_above``, her fingers hang down the upper part of the wall: the band's lower end (the
+    palm's lower edge at the base), each hand on the part the other leaves free. Where the base is seen
+    too low, the put-down lets the object slide down the loosened grip (`LowerUntilSupported`)."""
+    if from_above:
+        return hand.reach_below
     top = WALL_TOP[obj] if obj in WALL_TOP else min(WALL_TOP.values())
     return 0.5 * (hand.reach_below + top - hand.reach_above)
 
@@ -100,7 +106,7 @@ def side_grasp_pose(prim: Primitive, back: float = 0.0, up: float = 0.0, roll: f
     if held_up:
         # which object the person holds out, as seen, for where the hand fits on it
         seen = prim.identify() if obj == "held_out" else obj
-        base_z, h = prim.base_z(), held_grasp_height(seen or obj, prim.robot.gripper)
+        base_z, h = prim.base_z(), held_grasp_height(seen or obj, prim.robot.gripper, prim.holder_grip() == "ag")
     else:
         base_z, h = TABLE_Z, prim.grasp_height
     c = np.array([x, y, base_z + (height if height is not None else h) + up])

@@ -30,6 +30,16 @@ ABOVE_GRASP = 0.10
 TOP_CLEARANCE = 0.01
 #: m above the table of the top of the tallest object (the bottle with its stopper)
 TALLEST = max(catalogue.top(o) for o in OBJECTS)
+#: m short of the object's wall that the palm stops taking what the person holds from above: her fingers
+#: hang down its side toward the robot there (the fingers still close from that far: `closes_short`; the
+#: hand then takes the object low, `held_grasp_height`, so that its fingers close under hers)
+ROOM_FOR_HER_FINGERS = 0.02
+
+
+def room_for_her_fingers(p: Primitive) -> float:
+    """How far short of the wall the palm stops on what the person holds (m): ROOM_FOR_HER_FINGERS when she
+    was seen holding it from above, else 0 (a side grip leaves the robot's side of the object free)."""
+    return ROOM_FOR_HER_FINGERS if p.holder_grip() == "ag" else 0.0
 
 
 def retract_phases(over_at: float | None = None) -> list[Phase]:
@@ -67,7 +77,8 @@ def _reach_goals(height: float | None, held_up: bool) -> list[tuple[str, Callabl
     return [
         ("above pre-grasp", lambda p: above_pre_grasp(p, height, held_up), 1.5, 0.02),
         ("pre-grasp", lambda p: side_grasp_pose(p, back=PRE_GRASP_BACK, up=0.0, height=height, held_up=held_up), 0.8, 0.02),
-        ("approach", lambda p: side_grasp_pose(p, height=height, held_up=held_up), 1.0, 0.025),
+        ("approach", lambda p: side_grasp_pose(p, back=room_for_her_fingers(p) if held_up else 0.0, height=height,
+                                               held_up=held_up), 1.0, 0.025),
     ]
 
 
@@ -75,7 +86,8 @@ def _closes_short(p: Primitive) -> float:
     """How far short of the grasp the hand may close on what the person holds up (`closes_short`): for the
     object seen, or the one the hand fits least deep when unseen which."""
     obj = p.identify() if p.object == "held_out" else p.object
-    return closes_short(obj) if obj in catalogue.TASK_OBJECTS else min(closes_short(o) for o in catalogue.TASK_OBJECTS)
+    short = closes_short(obj) if obj in catalogue.TASK_OBJECTS else min(closes_short(o) for o in catalogue.TASK_OBJECTS)
+    return short - room_for_her_fingers(p)   # the approach's goal already stops that much short
 
 
 def grasp_phase() -> Grip:
